@@ -1,0 +1,6 @@
+"""Exact kinematics: positions, velocities and accelerations, vectorised over drive positions."""
+
+from .state import LinkState, Motion
+from .solve import analyse, SINGULAR_SIN, WARN_SIN
+
+__all__ = ["LinkState", "Motion", "analyse", "SINGULAR_SIN", "WARN_SIN"]

@@ -1,0 +1,342 @@
+"""Closed-form solutions of the five forms of class II Assur groups.
+
+Notation (after Artobolevsky): links m and n; outer pair D joins m to a known link k,
+inner pair E joins m and n, outer pair F joins n to a known link p. R = revolute (a pin),
+P = prismatic (a line common to both links, which therefore share ω and ε).
+
+Positions: circle–circle (RRR), circle–line (RRP), line-at-a-distance (RPR) — two
+assembly branches each — and line–line (PRP, RPP) — one solution.
+
+Velocities and accelerations: the vector loop through E, differentiated once and twice,
+is a plane vector equation ``rhs = x1·U1 + x2·U2`` in two scalar unknowns (ω, ε, or a
+sliding speed σ and its rate σ̇). It is solved in closed form by Cramer's rule with the
+cross product, x1 = (rhs × U2)/(U1 × U2), x2 = (U1 × rhs)/(U1 × U2); the velocity and
+acceleration equations share U1, U2, so sin(U1, U2) measures how well the position is
+conditioned, and sin = 0 is the form's singular position. A sliding speed σ is the
+velocity of the group's link relative to the other link of its prismatic pair, along the
+pair's line; its Coriolis term is 2·ω × σu.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable, Mapping
+
+import numpy as np
+
+from ..model import Mechanism
+from ..structure import Group, Joint
+from .state import J, LinkState, cross, rotate
+
+__all__ = ["Candidate", "candidates", "velocities", "accelerations", "SINGULAR_REASON"]
+
+
+@dataclass(frozen=True)
+class Candidate:
+    """One assembly branch of a group at every position: poses of m and n, where it is real
+    (``valid``), and ``why(i)``, the reason it is not at position i."""
+
+    m: LinkState
+    n: LinkState
+    valid: np.ndarray
+    why: Callable[[int], str]
+
+
+SINGULAR_REASON = {
+    "RRR": "links {m} and {n} are collinear (dead centre): the velocity equations have no unique solution",
+    "RRP": "link {m} is perpendicular to the guide of link {n}: the velocity equations have no unique solution",
+    "RPR": "the guide of links {m}/{n} is perpendicular to the line of their pivots: no unique solution",
+    "PRP": "the two guides are parallel: the position of the pin between links {m} and {n} is undetermined",
+    "RPP": "the two guides are parallel: link {n}'s position along them is undetermined",
+}
+
+States = Mapping[str, LinkState]
+
+
+def _local(mech: Mechanism, link: str, point: str) -> np.ndarray:
+    return mech.links[link].local[point]
+
+
+def _pin(mech: Mechanism, states: States, joint: Joint) -> np.ndarray:
+    """World position of an outer revolute pair, from the known link."""
+    return states[joint.other].point(_local(mech, joint.other, joint.point))
+
+
+def _place(la: np.ndarray, lb: np.ndarray, a: np.ndarray, b: np.ndarray) -> LinkState:
+    """The pose putting local points la, lb at world points a, b (|ab| = |la lb|)."""
+    d = b - a
+    theta = np.arctan2(d[:, 1], d[:, 0]) - np.arctan2(lb[1] - la[1], lb[0] - la[0])
+    return LinkState(theta, a - rotate(la, theta))
+
+
+def _fixed_angle(theta: np.ndarray, local: np.ndarray, x: np.ndarray) -> LinkState:
+    """The pose with rotation θ putting local point ``local`` at world point x."""
+    return LinkState(theta, x - rotate(local, theta))
+
+
+def _line(mech_state: LinkState, anchor: np.ndarray, direction: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    return mech_state.point(anchor), mech_state.direction(direction)
+
+
+def _intersect(p1: np.ndarray, u1: np.ndarray, p2: np.ndarray, u2: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Intersection of lines p1 + t·u1 and p2 + s·u2; second value: u1 × u2 (0 = parallel)."""
+    det = cross(u1, u2)
+    safe = np.where(det == 0.0, 1.0, det)
+    t = cross(p2 - p1, u2) / safe
+    return p1 + t[..., None] * u1, det
+
+
+# --- positions -----------------------------------------------------------------------------
+
+def candidates(group: Group, mech: Mechanism, states: States, tol: float) -> list[Candidate]:
+    """Every assembly branch of ``group``, given the states of the links it is attached to.
+    ``tol`` is the length tolerance (m) for assembly at a limit position."""
+    return _POSITIONS[group.form](group, mech, states, tol)
+
+
+def _rrr(g: Group, mech: Mechanism, states: States, tol: float) -> list[Candidate]:
+    D, F = _pin(mech, states, g.d), _pin(mech, states, g.f)
+    Lm = mech.links[g.m].local
+    Ln = mech.links[g.n].local
+    lm = float(np.linalg.norm(Lm[g.e.point] - Lm[g.d.point]))
+    ln = float(np.linalg.norm(Ln[g.e.point] - Ln[g.f.point]))
+    d = F - D
+    L = np.hypot(d[:, 0], d[:, 1])
+    Ls = np.where(L == 0.0, 1.0, L)
+    x = (lm * lm - ln * ln + L * L) / (2.0 * Ls)
+    h2 = lm * lm - x * x
+    valid = (L > 0.0) & (h2 >= -2.0 * tol * (lm + ln))
+    h = np.sqrt(np.clip(h2, 0.0, None))
+    ex = d / Ls[:, None]
+
+    def why(i: int) -> str:
+        return (f"|{g.d.point}{g.f.point}| = {L[i]:.6g} m, but links {g.m} ({lm:.6g} m) and {g.n} ({ln:.6g} m) "
+                f"join only between {abs(lm - ln):.6g} and {lm + ln:.6g} m")
+
+    out = []
+    for sign in (1.0, -1.0):
+        E = D + x[:, None] * ex + (sign * h)[:, None] * J(ex)
+        out.append(Candidate(_place(Lm[g.d.point], Lm[g.e.point], D, E),
+                             _place(Ln[g.f.point], Ln[g.e.point], F, E), valid, why))
+    return out
+
+
+def _rrp(g: Group, mech: Mechanism, states: States, tol: float) -> list[Candidate]:
+    D = _pin(mech, states, g.d)
+    pr, p = g.f.prismatic, g.f.other
+    Lm, Ln = mech.links[g.m].local, mech.links[g.n].local
+    lm = float(np.linalg.norm(Lm[g.e.point] - Lm[g.d.point]))
+    theta = states[p].theta
+    Q, u = _line(states[p], pr.anchor[p], pr.direction)
+    h = float(np.dot(Ln[g.e.point] - pr.anchor[g.n], pr.normal))   # E's offset from the line, fixed in n
+    w = Q + h * J(u) - D
+    b = np.einsum("ij,ij->i", w, u)
+    disc = b * b - (np.einsum("ij,ij->i", w, w) - lm * lm)
+    valid = disc >= -2.0 * tol * lm
+    root = np.sqrt(np.clip(disc, 0.0, None))
+
+    def why(i: int) -> str:
+        dist = abs(float(cross(u[i], w[i])))
+        return (f"link {g.m} ({g.d.point}{g.e.point} = {lm:.6g} m) cannot reach the line of pin {g.e.point} "
+                f"({dist:.6g} m away from {g.d.point})")
+
+    out = []
+    for sign in (1.0, -1.0):
+        E = Q + h * J(u) + (-b + sign * root)[:, None] * u
+        out.append(Candidate(_place(Lm[g.d.point], Lm[g.e.point], D, E),
+                             _fixed_angle(theta, Ln[g.e.point], E), valid, why))
+    return out
+
+
+def _rpr(g: Group, mech: Mechanism, states: States, tol: float) -> list[Candidate]:
+    D, F = _pin(mech, states, g.d), _pin(mech, states, g.f)
+    pr = g.e.prismatic
+    Lm, Ln = mech.links[g.m].local, mech.links[g.n].local
+    h = float(np.dot(Lm[g.d.point] - pr.anchor[g.m], pr.normal) - np.dot(Ln[g.f.point] - pr.anchor[g.n], pr.normal))
+    d = D - F
+    L = np.hypot(d[:, 0], d[:, 1])
+    beta = np.arctan2(d[:, 1], d[:, 0])
+    gamma = float(np.arctan2(pr.normal[1], pr.normal[0]))
+    valid = (L > 0.0) & (np.abs(h) <= L + tol)
+    c = np.arccos(np.clip(h / np.where(L == 0.0, 1.0, L), -1.0, 1.0))
+
+    def why(i: int) -> str:
+        return (f"pivots {g.d.point} and {g.f.point} are {L[i]:.6g} m apart, less than the guide's offset "
+                f"{abs(h):.6g} m")
+
+    out = []
+    for sign in (1.0, -1.0):
+        theta = beta - gamma - sign * c
+        out.append(Candidate(_fixed_angle(theta, Lm[g.d.point], D), _fixed_angle(theta, Ln[g.f.point], F), valid, why))
+    return out
+
+
+def _prp(g: Group, mech: Mechanism, states: States, tol: float) -> list[Candidate]:
+    k, p = g.d.other, g.f.other
+    E = g.e.point
+    Lm, Ln = mech.links[g.m].local, mech.links[g.n].local
+    lines = []
+    for joint, link, L in ((g.d, g.m, Lm), (g.f, g.n, Ln)):
+        pr = joint.prismatic
+        Q, u = _line(states[joint.other], pr.anchor[joint.other], pr.direction)
+        h = float(np.dot(L[E] - pr.anchor[link], pr.normal))
+        lines.append((Q + h * J(u), u))
+    Ew, det = _intersect(*lines[0], *lines[1])
+    valid = np.abs(det) > 1e-12
+
+    def why(i: int) -> str:
+        return f"the guides of links {g.m} and {g.n} are parallel, so pin {E} has no position"
+
+    return [Candidate(_fixed_angle(states[k].theta, Lm[E], Ew), _fixed_angle(states[p].theta, Ln[E], Ew), valid, why)]
+
+
+def _rpp(g: Group, mech: Mechanism, states: States, tol: float) -> list[Candidate]:
+    D = _pin(mech, states, g.d)
+    pe, pf, p = g.e.prismatic, g.f.prismatic, g.f.other
+    Lm = mech.links[g.m].local
+    theta = states[p].theta
+    m_state = _fixed_angle(theta, Lm[g.d.point], D)
+    Q, det = _intersect(*_line(m_state, pe.anchor[g.m], pe.direction), *_line(states[p], pf.anchor[p], pf.direction))
+    Q_local, _ = _intersect(pe.anchor[g.n][None], pe.direction[None], pf.anchor[g.n][None], pf.direction[None])
+    valid = np.abs(det) > 1e-12
+
+    def why(i: int) -> str:
+        return f"the two guides of link {g.n} are parallel, so its position along them is undetermined"
+
+    return [Candidate(m_state, _fixed_angle(theta, Q_local[0], Q), valid, why)]
+
+
+_POSITIONS = {"RRR": _rrr, "RRP": _rrp, "RPR": _rpr, "PRP": _prp, "RPP": _rpp}
+
+
+# --- velocities and accelerations ----------------------------------------------------------
+
+def _cramer(U1: np.ndarray, U2: np.ndarray, rhs: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Solve rhs = x1·U1 + x2·U2; also return sin of the angle between U1 and U2."""
+    det = cross(U1, U2)
+    scale = np.hypot(U1[:, 0], U1[:, 1]) * np.hypot(U2[:, 0], U2[:, 1])
+    sin = np.where(scale > 0.0, det / np.where(scale > 0.0, scale, 1.0), 0.0)
+    safe = np.where(det == 0.0, 1.0, det)
+    return cross(rhs, U2) / safe, cross(U1, rhs) / safe, sin
+
+
+@dataclass(frozen=True)
+class _Frame:
+    """What the velocity and acceleration equations of a group need, at every position."""
+
+    U1: np.ndarray
+    U2: np.ndarray
+
+
+def _geometry(g: Group, mech: Mechanism, states: States) -> dict[str, np.ndarray]:
+    """World positions of the group's pair points and guide directions."""
+    geo: dict[str, np.ndarray] = {}
+    m, n = states[g.m], states[g.n]
+    Lm, Ln = mech.links[g.m].local, mech.links[g.n].local
+    if g.d.kind == "R":
+        geo["D"] = m.point(Lm[g.d.point])
+    if g.f.kind == "R":
+        geo["F"] = n.point(Ln[g.f.point])
+    if g.e.kind == "R":
+        geo["E"] = m.point(Lm[g.e.point])
+    for key, joint, state in (("ud", g.d, m), ("ue", g.e, m), ("uf", g.f, n)):
+        if joint.kind == "P":
+            geo[key] = state.direction(joint.prismatic.direction)
+    return geo
+
+
+def velocities(g: Group, mech: Mechanism, states: dict[str, LinkState]) -> tuple[dict, np.ndarray]:
+    """Set ω and v of the group's links in ``states``; return the sliding speeds σ and sin."""
+    geo = _geometry(g, mech, states)
+    k, p = states[g.d.other], states[g.f.other]
+    m, n = states[g.m], states[g.n]
+    form = g.form
+    if form == "RRR":
+        D, E, F = geo["D"], geo["E"], geo["F"]
+        wm, wn, sin = _cramer(-J(E - D), J(E - F), k.velocity(D) - p.velocity(F))
+        states[g.m] = m.with_velocity(wm, D, k.velocity(D))
+        states[g.n] = n.with_velocity(wn, F, p.velocity(F))
+        return {}, sin
+    if form == "RRP":
+        D, E, u = geo["D"], geo["E"], geo["uf"]
+        vEp = p.velocity(E)
+        wm, s, sin = _cramer(-J(E - D), u, k.velocity(D) - vEp)
+        states[g.m] = m.with_velocity(wm, D, k.velocity(D))
+        states[g.n] = n.with_velocity(p.omega, E, vEp + s[:, None] * u)
+        return {"f": s}, sin
+    if form == "RPR":
+        D, F, u = geo["D"], geo["F"], geo["ue"]
+        w, s, sin = _cramer(J(D - F), u, k.velocity(D) - p.velocity(F))
+        states[g.m] = m.with_velocity(w, D, k.velocity(D))
+        states[g.n] = n.with_velocity(w, F, p.velocity(F))
+        return {"e": s}, sin
+    if form == "PRP":
+        E, u1, u2 = geo["E"], geo["ud"], geo["uf"]
+        vEk, vEp = k.velocity(E), p.velocity(E)
+        s1, s2, sin = _cramer(-u1, u2, vEk - vEp)
+        states[g.m] = m.with_velocity(k.omega, E, vEk + s1[:, None] * u1)
+        states[g.n] = n.with_velocity(p.omega, E, vEp + s2[:, None] * u2)
+        return {"d": s1, "f": s2}, sin
+    # RPP
+    D, ue, uf = geo["D"], geo["ue"], geo["uf"]
+    vDp = p.velocity(D)
+    se, sf, sin = _cramer(ue, uf, k.velocity(D) - vDp)
+    states[g.m] = m.with_velocity(p.omega, D, k.velocity(D))
+    states[g.n] = n.with_velocity(p.omega, D, vDp + sf[:, None] * uf)
+    return {"e": se, "f": sf}, sin
+
+
+def accelerations(g: Group, mech: Mechanism, states: dict[str, LinkState], sliding: dict) -> None:
+    """Set ε and a of the group's links in ``states`` (velocities must be set)."""
+    geo = _geometry(g, mech, states)
+    k, p = states[g.d.other], states[g.f.other]
+    m, n = states[g.m], states[g.n]
+    form = g.form
+
+    def sq(w: np.ndarray) -> np.ndarray:
+        return (w * w)[:, None]
+
+    def cor(w: np.ndarray, s: np.ndarray, u: np.ndarray) -> np.ndarray:
+        """Coriolis acceleration 2·ω × (σ u)."""
+        return 2.0 * (w * s)[:, None] * J(u)
+
+    if form == "RRR":
+        D, E, F = geo["D"], geo["E"], geo["F"]
+        aD, aF = k.acceleration(D), p.acceleration(F)
+        rhs = aD - aF - sq(m.omega) * (E - D) + sq(n.omega) * (E - F)
+        em, en, _ = _cramer(-J(E - D), J(E - F), rhs)
+        states[g.m] = m.with_acceleration(em, D, aD)
+        states[g.n] = n.with_acceleration(en, F, aF)
+    elif form == "RRP":
+        D, E, u = geo["D"], geo["E"], geo["uf"]
+        s = sliding["f"]
+        aD, aEp = k.acceleration(D), p.acceleration(E)
+        rhs = aD - sq(m.omega) * (E - D) - aEp - cor(p.omega, s, u)
+        em, ds, _ = _cramer(-J(E - D), u, rhs)
+        states[g.m] = m.with_acceleration(em, D, aD)
+        states[g.n] = n.with_acceleration(p.epsilon, E, aEp + ds[:, None] * u + cor(p.omega, s, u))
+    elif form == "RPR":
+        D, F, u = geo["D"], geo["F"], geo["ue"]
+        s, w = sliding["e"], m.omega
+        aD, aF = k.acceleration(D), p.acceleration(F)
+        rhs = aD - aF + sq(w) * (D - F) - cor(w, s, u)
+        e, _, _ = _cramer(J(D - F), u, rhs)
+        states[g.m] = m.with_acceleration(e, D, aD)
+        states[g.n] = n.with_acceleration(e, F, aF)
+    elif form == "PRP":
+        E, u1, u2 = geo["E"], geo["ud"], geo["uf"]
+        s1, s2 = sliding["d"], sliding["f"]
+        aEk = k.acceleration(E) + cor(k.omega, s1, u1)
+        aEp = p.acceleration(E) + cor(p.omega, s2, u2)
+        ds1, ds2, _ = _cramer(-u1, u2, aEk - aEp)
+        states[g.m] = m.with_acceleration(k.epsilon, E, aEk + ds1[:, None] * u1)
+        states[g.n] = n.with_acceleration(p.epsilon, E, aEp + ds2[:, None] * u2)
+    else:  # RPP
+        D, ue, uf = geo["D"], geo["ue"], geo["uf"]
+        se, sf, w = sliding["e"], sliding["f"], p.omega
+        aD = k.acceleration(D)
+        aDp = p.acceleration(D)
+        rhs = aD - aDp - cor(w, se, ue) - cor(w, sf, uf)
+        dse, dsf, _ = _cramer(ue, uf, rhs)
+        states[g.m] = m.with_acceleration(p.epsilon, D, aD)
+        states[g.n] = n.with_acceleration(p.epsilon, D, aDp + dsf[:, None] * uf + cor(w, sf, uf))

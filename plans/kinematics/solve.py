@@ -1,0 +1,164 @@
+"""Solving a mechanism group by group, over many drive positions at once.
+
+Positions are continued from the sketch: the drive is walked from its sketch value to
+every requested value in steps of at most ``STEP`` (1° or 1/200 of the mechanism's size),
+and at each step every group takes the assembly branch nearest the previous step (the
+sketch, at the start). The branch therefore never jumps, and a position that cannot be
+reached without the mechanism falling apart is reported, with the group and the reason.
+Velocities and accelerations are then solved at the requested positions only.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import AssemblyError, SingularPositionError
+from ..model import Mechanism
+from ..structure import Structure
+from ..scene import FRAME
+from .groups import SINGULAR_REASON, accelerations, candidates, velocities
+from .state import LinkState, Motion, rotate
+
+__all__ = ["analyse", "drive_states", "SINGULAR_SIN", "WARN_SIN", "STEP_DEG"]
+
+#: |sin| of a group's velocity equations below which the position is reported as singular.
+SINGULAR_SIN = 1e-9
+#: |sin| below which the position is reported as near-singular (a warning, values are kept).
+WARN_SIN = 1e-2
+#: Largest continuation step of a crank (degrees).
+STEP_DEG = 1.0
+
+
+def analyse(mech: Mechanism, structure: Structure, values: np.ndarray | None = None, *, order: int = 2) -> Motion:
+    """Positions (order 0), velocities (1) and accelerations (2) at the drive ``values``
+    (degrees for a crank, metres for a slider; the scene's values by default)."""
+    values = np.asarray(mech.drive.values if values is None else values, dtype=float)
+    states, targets = _positions(mech, structure, values)
+    states = {name: s.take(targets) for name, s in states.items()}
+    sines: dict[str, np.ndarray] = {}
+    if order >= 1:
+        _set_drive_rates(mech, states, values)
+        sliding = {}
+        for g in structure.groups:
+            sliding[g.name], sines[g.name] = velocities(g, mech, states)
+            bad = np.flatnonzero(np.abs(sines[g.name]) < SINGULAR_SIN)
+            if bad.size:
+                raise SingularPositionError(SINGULAR_REASON[g.form].format(m=g.m, n=g.n),
+                                            group=f"group {g.name} ({g.form})", angle=_fmt(mech, values[bad[0]]))
+        if order >= 2:
+            for g in structure.groups:
+                accelerations(g, mech, states, sliding[g.name])
+    return Motion(mechanism=mech, structure=structure, values=values, order=order, links=states, sines=sines)
+
+
+def _fmt(mech: Mechanism, value: float) -> str:
+    return f"{value:g}°" if mech.drive.kind == "rotary" else f"{value:g} m"
+
+
+def _grid(mech: Mechanism, values: np.ndarray) -> tuple[np.ndarray, list[np.ndarray], np.ndarray]:
+    """The continuation grid: its values, its sweeps (index paths from the start), and the
+    index of every requested value in it."""
+    start = mech.drive.sketch_value
+    if mech.drive.kind == "rotary":
+        start += 360.0 * np.round((np.median(values) - start) / 360.0)
+        step = STEP_DEG
+    else:
+        step = mech.size / 200.0
+    up = np.unique(np.concatenate([np.arange(start, values.max(), step), values[values >= start]]))
+    down = np.unique(np.concatenate([np.arange(start, values.min(), -step), values[values <= start]]))[::-1]
+    up = up[up > start]
+    down = down[down < start]
+    grid = np.concatenate([[start], up, down])
+    sweeps = [np.arange(0, 1 + len(up)), np.concatenate([[0], np.arange(1 + len(up), len(grid))])]
+    index = np.array([int(np.flatnonzero(grid == v)[0]) for v in values])
+    return grid, sweeps, index
+
+
+def drive_states(mech: Mechanism, values: np.ndarray) -> dict[str, LinkState]:
+    """Poses of the frame and the driving link at drive ``values``."""
+    n = len(values)
+    zero = np.zeros(n)
+    states = {FRAME: LinkState(zero, np.zeros((n, 2)), zero, np.zeros((n, 2)), zero, np.zeros((n, 2)))}
+    d = mech.drive
+    local = mech.links[d.link].local
+    if d.kind == "rotary":
+        pivot = mech.links[FRAME].local[d.pivot]
+        arm = local[d.tip] - local[d.pivot]
+        theta = np.radians(values) - np.arctan2(arm[1], arm[0])
+        states[d.link] = LinkState(theta, pivot - rotate(local[d.pivot], theta))
+    else:
+        g = d.guide
+        across = g.normal * float(np.dot(g.anchor[FRAME] - g.anchor[d.link], g.normal))
+        states[d.link] = LinkState(zero.copy(), across + values[:, None] * g.direction)
+    return states
+
+
+def _set_drive_rates(mech: Mechanism, states: dict[str, LinkState], values: np.ndarray) -> None:
+    d = mech.drive
+    n = len(values)
+    s = states[d.link]
+    if d.kind == "rotary":
+        pivot = np.broadcast_to(mech.links[FRAME].local[d.pivot], (n, 2))
+        s = s.with_velocity(np.full(n, d.speed), pivot, np.zeros((n, 2)))
+        s = s.with_acceleration(np.full(n, d.rate), pivot, np.zeros((n, 2)))
+    else:
+        u = d.guide.direction
+        s = s.with_velocity(np.zeros(n), s.origin, np.broadcast_to(d.speed * u, (n, 2)).copy())
+        s = s.with_acceleration(np.zeros(n), s.origin, np.broadcast_to(d.rate * u, (n, 2)).copy())
+    states[d.link] = s
+
+
+def _positions(mech: Mechanism, structure: Structure, values: np.ndarray) -> tuple[dict[str, LinkState], np.ndarray]:
+    grid, sweeps, index = _grid(mech, values)
+    states = drive_states(mech, grid)
+    tol = 1e-12 * mech.size
+    for g in structure.groups:
+        options = candidates(g, mech, states, tol)
+        choice = _branch(mech, g.links, options, sweeps)
+        m_state = _select([o.m for o in options], choice)
+        n_state = _select([o.n for o in options], choice)
+        valid = np.choose(choice, [o.valid for o in options])
+        for sweep in sweeps:
+            bad = np.flatnonzero(~valid[sweep])
+            if bad.size:
+                i = sweep[bad[0]]
+                after = values[(values - grid[i]) * (grid[sweep[-1]] - grid[0]) >= 0]
+                target = after[np.argmin(np.abs(after - grid[i]))] if after.size else grid[i]
+                where = "" if grid[i] == target else f" (the walk from the sketch at {_fmt(mech, grid[0])} fails at {_fmt(mech, grid[i])})"
+                raise AssemblyError(f"cannot assemble: {options[int(choice[i])].why(i)}{where}; check the "
+                                    "lengths or the requested positions", group=f"group {g.name} ({g.form})",
+                                    angle=_fmt(mech, target))
+        states[g.m], states[g.n] = m_state, n_state
+    return states, index
+
+
+def _select(options: list[LinkState], choice: np.ndarray) -> LinkState:
+    """The state that takes, at position i, option ``choice[i]``."""
+    theta = np.choose(choice, [o.theta for o in options])
+    origin = np.choose(choice[:, None], [o.origin for o in options])
+    return LinkState(theta, origin)
+
+
+def _branch(mech: Mechanism, links: tuple[str, str], options: list, sweeps: list[np.ndarray]) -> np.ndarray:
+    """Index of the chosen option at every grid position: nearest the sketch at the start,
+    then nearest the previous step along each sweep."""
+    n = len(options[0].valid)
+    if len(options) == 1:
+        return np.zeros(n, dtype=int)
+    locals_ = [(name, mech.links[name].local[p], p) for name in links for p in mech.links[name].points]
+    sig = [np.concatenate([getattr(o, "m" if name == links[0] else "n").point(x) for name, x, _ in locals_], axis=1)
+           for o in options]
+    sketch = np.concatenate([mech.sketch[p] for _, _, p in locals_])
+    # an invalid option is never preferred over a valid one
+    penalty = [np.where(o.valid, 0.0, np.inf) for o in options]
+    choice = np.zeros(n, dtype=int)
+    first = int(np.argmin([np.sum((s[0] - sketch) ** 2) + pen[0] for s, pen in zip(sig, penalty)]))
+    for sweep in sweeps:
+        prev = sig[first][sweep[0]]
+        choice[sweep[0]] = first
+        for i in sweep[1:]:
+            d = [float(np.sum((s[i] - prev) ** 2)) + pen[i] for s, pen in zip(sig, penalty)]
+            c = int(np.argmin(d))
+            choice[i] = c
+            prev = sig[c][i]
+    return choice
