@@ -164,7 +164,7 @@ def _shape(name: str, pts: tuple[str, ...], sketch: Mapping[str, np.ndarray],
         if h2 < -LENGTH_RTOL * d0 * d0 * 10:
             raise SceneError(f"lengths {p0}{pk} = {d0:g}, {p1}{pk} = {d1:g} and {p0}{p1} = {d01:g} cannot form a "
                              "triangle; correct [lengths] or the sketch", key=key)
-        side = float(np.cross(axis, sketch[pk] - sketch[p0]))
+        side = float(axis[0] * (sketch[pk] - sketch[p0])[1] - axis[1] * (sketch[pk] - sketch[p0])[0])
         h = math.sqrt(max(h2, 0.0))
         local[pk] = local[p0] + x * ex + math.copysign(h, side) * ey
     for pair, value in lengths.items():

@@ -1,0 +1,107 @@
+"""The ``plans`` command: render scenes, check drawings, render the bundled examples."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from importlib import resources
+from pathlib import Path
+from typing import Sequence
+
+import numpy as np
+
+from .checking import check_svg
+from .errors import PlansError
+from .render import Rendered, render_scene, write_files
+
+__all__ = ["main"]
+
+
+def _table(r: Rendered) -> str:
+    m = r.motion
+    mech = m.mechanism
+    unit = "deg" if mech.drive.kind == "rotary" else "m"
+    lines = [f"{r.stem}: {m.structure.formula}   μl = {r.scales.mu_l:g} m/mm"
+             + (f", μV = {r.scales.mu_v:g} (m/s)/mm" if r.scales.mu_v else "")
+             + (f", μa = {r.scales.mu_a:g} (m/s²)/mm" if r.scales.mu_a else "")]
+    for i, value in enumerate(m.values):
+        lines.append(f"  at {value:g} {unit}:")
+        if m.order >= 1:
+            row = []
+            for p in mech.sketch:
+                if m.carrier(p) == "0":
+                    continue
+                v = float(np.linalg.norm(m.velocity(p)[i]))
+                a = f", a = {float(np.linalg.norm(m.acceleration(p)[i])):.4g}" if m.order >= 2 else ""
+                row.append(f"{p}: v = {v:.4g}{a}")
+            lines.append("    " + "; ".join(row))
+            links = []
+            for name in mech.moving:
+                s = m.links[name]
+                e = f", ε = {float(s.epsilon[i]):.4g}" if m.order >= 2 else ""
+                links.append(f"{name}: ω = {float(s.omega[i]):.4g}{e}")
+            lines.append("    " + "; ".join(links))
+    return "\n".join(lines)
+
+
+def _render(paths: Sequence[str], out: str, quiet: bool) -> int:
+    rendered = [render_scene(p) for p in paths]   # every scene first: an error writes nothing
+    for r in rendered:
+        written = write_files(r.files, out)
+        if not quiet:
+            print(_table(r))
+            print(f"  wrote {len(written)} files to {out}/")
+        for w in r.warnings:
+            print(f"warning: {w}", file=sys.stderr)
+    return 0
+
+
+def _check(paths: Sequence[str]) -> int:
+    bad = 0
+    total = 0
+    for path in paths:
+        rows = check_svg(path)
+        print(f"{path}:")
+        if not rows:
+            print("  no tagged vectors")
+        for m in rows:
+            total += 1
+            bad += not m.ok
+            print(f"  {'ok  ' if m.ok else 'FAIL'} {m.quantity:<16} {m.length_mm:10.3f} mm × {m.mu:<8g} = "
+                  f"{m.measured:<12.6g} exact {m.value:<12.6g} |Δ| = {m.error:.2e} (tol {m.tolerance:.1e})")
+    print(f"{total - bad} vectors within drawing precision, {bad} outside")
+    return 1 if bad else 0
+
+
+def _examples() -> list[Path]:
+    root = resources.files("plans.examples")
+    return sorted(Path(str(p)) for p in root.iterdir() if p.name.endswith(".toml"))
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="plans", description="Velocity and acceleration plans of planar "
+                                     "linkages, drawn to scale from an exact vector core.")
+    sub = parser.add_subparsers(dest="command", required=True)
+    p = sub.add_parser("render", help="render scene files to SVG and JSON")
+    p.add_argument("scenes", nargs="+", metavar="SCENE.toml")
+    p.add_argument("-o", "--output", default="output", metavar="DIR")
+    p.add_argument("-q", "--quiet", action="store_true")
+    c = sub.add_parser("check", help="measure every vector of plan SVGs against its exact value")
+    c.add_argument("svgs", nargs="+", metavar="FILE.svg")
+    d = sub.add_parser("demo", help="render the bundled textbook examples")
+    d.add_argument("-o", "--output", default="output", metavar="DIR")
+    d.add_argument("-q", "--quiet", action="store_true")
+    args = parser.parse_args(argv)
+    try:
+        if args.command == "render":
+            return _render(args.scenes, args.output, args.quiet)
+        if args.command == "demo":
+            return _render([str(p) for p in _examples()], args.output, args.quiet)
+        return _check(args.svgs)
+    except PlansError as exc:
+        print(f"plans: error: {exc}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,270 @@
+"""Velocity and acceleration plans as geometry in plan millimetres (pole at the origin, y up).
+
+The image of a point X is v_X/μV (a_X/μa). Each vector of the plan is a
+:class:`PlanVector` tagged with its quantity:
+
+- ``v:X``, ``a:X`` — absolute velocity / acceleration of scene point X (from the pole);
+- ``v:X/Y`` — velocity of X relative to Y, both on one link (⊥ XY);
+- ``a:X/Y:n`` — normal component ω²·XY, from y towards n, directed X → Y;
+- ``a:X/Y:t`` — tangential component ε·XY, from n to x, ⊥ XY;
+- ``a:X/Y`` — the whole relative acceleration (similarity images of extra points);
+- ``v:P3/P2`` — velocity of the point P of guide link 3 relative to the coincident point
+  of slider link 2 (∥ guide); ``a:P3/P2:cor`` the Coriolis component 2·ω × v_rel (to
+  point k), ``a:P3/P2:r`` the relative sliding acceleration (∥ guide, from k).
+
+A point name followed by a link name (``A3``) is the point of that link now at X.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..kinematics import Motion
+from ..kinematics.state import J
+from ..scene import FRAME
+
+__all__ = ["PlanPoint", "PlanVector", "ConstructionLine", "Plan", "Relation", "relations",
+           "velocity_plan", "acceleration_plan", "EXTENSION_MM"]
+
+#: How far a construction line runs beyond the points it passes through, mm.
+EXTENSION_MM = 12.0
+#: Vectors shorter than this are not drawn (their value is zero to drawing precision), mm.
+MIN_DRAWN_MM = 1e-6
+
+
+@dataclass(frozen=True)
+class PlanPoint:
+    """An image on a plan: label (``b``, ``a3``, ``n_BA``, ``k_A3A2``) and position (mm)."""
+
+    label: str
+    xy: tuple[float, float]
+
+
+@dataclass(frozen=True)
+class PlanVector:
+    """A drawn vector: ``quantity`` tag, tail and head (mm), exact magnitude ``value`` (SI)."""
+
+    quantity: str
+    tail: tuple[float, float]
+    head: tuple[float, float]
+    value: float
+    kind: str  # absolute, relative, normal, tangential, coriolis, sliding
+
+    @property
+    def length(self) -> float:
+        return float(np.hypot(self.head[0] - self.tail[0], self.head[1] - self.tail[1]))
+
+
+@dataclass(frozen=True)
+class ConstructionLine:
+    """A line of known direction through a known image: its two end points (mm), and the
+    tag of the vector that must lie on it."""
+
+    start: tuple[float, float]
+    end: tuple[float, float]
+    quantity: str
+    group: str
+
+
+@dataclass(frozen=True)
+class Plan:
+    """One plan at one position: ``kind`` is ``velocity`` or ``acceleration``."""
+
+    kind: str
+    mu: float
+    pole: str
+    points: tuple[PlanPoint, ...]
+    vectors: tuple[PlanVector, ...]
+    lines: tuple[ConstructionLine, ...]
+    similar: tuple[tuple[str, tuple[str, ...]], ...]  # link → labels of its images (similarity)
+
+    def point(self, label: str) -> tuple[float, float]:
+        return next(p.xy for p in self.points if p.label == label)
+
+
+@dataclass(frozen=True)
+class Relation:
+    """A relative motion drawn on the plans.
+
+    ``rigid``: point ``x`` relative to point ``y`` on ``link`` (``pair`` True when it is one
+    of the group's equations, False for a similarity image). ``slide``: the guide's point
+    relative to the slider's point at ``x`` (``frame``: the guide or slider is the frame, so
+    only a construction line through the pole is drawn).
+    """
+
+    kind: str
+    link: str
+    x: str
+    y: str
+    group: str
+    other: str = ""
+    pair: bool = True
+
+
+def relations(motion: Motion) -> tuple[Relation, ...]:
+    """The relative motions that build the plans, group by group in solving order."""
+    mech, structure = motion.mechanism, motion.structure
+    out: list[Relation] = []
+    d = mech.drive
+    if d.kind == "rotary":
+        out.append(Relation("rigid", d.link, d.tip, d.pivot, group="I"))
+    else:
+        out.append(Relation("slide", d.link, d.guide.label, "", group="I", other=FRAME))
+    for g in structure.groups:
+        name = g.name
+        for joint in (g.d, g.e, g.f):
+            if joint.kind == "P":
+                pr = joint.prismatic
+                out.append(Relation("slide", pr.slider, pr.label, "", group=name, other=pr.guide))
+        if g.d.kind == "R" and g.e.kind == "R":
+            out.append(Relation("rigid", g.m, g.e.point, g.d.point, group=name))
+        if g.f.kind == "R" and g.e.kind == "R":
+            out.append(Relation("rigid", g.n, g.e.point, g.f.point, group=name))
+        if g.form == "RPR":
+            out.append(Relation("rigid", g.n, g.d.point, g.f.point, group=name))
+    fixed = set(mech.links[FRAME].points)
+    for link in mech.moving:
+        pts = mech.links[link].points
+        joints = [p for p in pts if len([l for l in mech.links.values() if p in l.local]) > 1]
+        bases = joints[:2] if joints else list(pts[:1])
+        for p in pts:
+            if p not in bases:  # similarity images, relative to the link's moving base points
+                out += [Relation("rigid", link, p, b, group=link, pair=False) for b in bases if b not in fixed]
+    return tuple(out)
+
+
+def _label(motion: Motion, point: str, link: str) -> str:
+    """``B`` when ``link`` carries B, else ``B3`` (the point of link 3 now at B)."""
+    return point if point in motion.mechanism.links[link].local else f"{point}{link}"
+
+
+class _Builder:
+    def __init__(self, motion: Motion, i: int, mu: float, kind: str):
+        self.motion, self.i, self.mu, self.kind = motion, i, mu, kind
+        self.points: dict[str, tuple[float, float]] = {}
+        self.vectors: list[PlanVector] = []
+        self.lines: list[ConstructionLine] = []
+
+    def world(self, point: str) -> np.ndarray:
+        return self.motion.position(point)[self.i]
+
+    def quantity(self, point: str, link: str) -> np.ndarray:
+        """v or a (SI) of the point of ``link`` now at ``point``."""
+        state = self.motion.links[link].take(np.array([self.i]))
+        x = self.motion.position(point)[self.i: self.i + 1]
+        vec = state.velocity(x) if self.kind == "velocity" else state.acceleration(x)
+        return vec[0]
+
+    def quantity_v(self, point: str, link: str) -> np.ndarray:
+        """v (m/s) of the point of ``link`` now at ``point``."""
+        state = self.motion.links[link].take(np.array([self.i]))
+        return state.velocity(self.motion.position(point)[self.i: self.i + 1])[0]
+
+    def image(self, point: str, link: str) -> tuple[float, float]:
+        label = _label(self.motion, point, link).lower()
+        xy = tuple(float(c) for c in self.quantity(point, link) / self.mu)
+        self.points.setdefault(label, xy)
+        return self.points[label]
+
+    def vector(self, quantity: str, tail, head, value: float, kind: str) -> None:
+        if np.hypot(head[0] - tail[0], head[1] - tail[1]) > MIN_DRAWN_MM:
+            self.vectors.append(PlanVector(quantity, tuple(tail), tuple(head), float(value), kind))
+
+    def line(self, through, direction: np.ndarray, reach, quantity: str, group: str) -> None:
+        """A construction line through ``through`` with ``direction``, covering points ``reach``."""
+        u = direction / np.linalg.norm(direction)
+        t = [float(np.dot(np.subtract(r, through), u)) for r in reach] + [0.0]
+        a = np.add(through, (min(t) - EXTENSION_MM) * u)
+        b = np.add(through, (max(t) + EXTENSION_MM) * u)
+        self.lines.append(ConstructionLine(tuple(map(float, a)), tuple(map(float, b)), quantity, group))
+
+
+def velocity_plan(motion: Motion, i: int, mu_v: float) -> Plan:
+    """The velocity plan at position ``i`` in scale ``mu_v`` ((m/s)/mm)."""
+    return _plan(motion, i, mu_v, "velocity")
+
+
+def acceleration_plan(motion: Motion, i: int, mu_a: float) -> Plan:
+    """The acceleration plan at position ``i`` in scale ``mu_a`` ((m/s²)/mm)."""
+    return _plan(motion, i, mu_a, "acceleration")
+
+
+def _plan(motion: Motion, i: int, mu: float, kind: str) -> Plan:
+    b = _Builder(motion, i, mu, kind)
+    mech = motion.mechanism
+    sym = "v" if kind == "velocity" else "a"
+    pole = (0.0, 0.0)
+    b.points["p" if kind == "velocity" else "π"] = pole
+    for rel in relations(motion):
+        if rel.kind == "rigid":
+            _rigid(b, rel, sym)
+        else:
+            _slide(b, rel, sym, pole)
+    for name in mech.sketch:  # absolute vectors of every moving scene point
+        link = motion.carrier(name)
+        if link == FRAME:
+            continue
+        head = b.image(name, link)
+        b.vector(f"{sym}:{name}", pole, head, float(np.linalg.norm(b.quantity(name, link))), "absolute")
+    similar = tuple((link, tuple(p.lower() for p in mech.links[link].points))
+                    for link in mech.moving if len(mech.links[link].points) >= 3)
+    points = tuple(PlanPoint(k, v) for k, v in b.points.items())
+    return Plan(kind=kind, mu=mu, pole="p" if kind == "velocity" else "π", points=points,
+                vectors=tuple(b.vectors), lines=tuple(b.lines), similar=similar)
+
+
+def _rigid(b: _Builder, rel: Relation, sym: str) -> None:
+    motion, link = b.motion, rel.link
+    xl, yl = _label(motion, rel.x, link), _label(motion, rel.y, link)
+    tail, head = b.image(rel.y, link), b.image(rel.x, link)
+    r = b.world(rel.x) - b.world(rel.y)   # the link's segment Y → X, m
+    state = motion.links[link]
+    q = f"{sym}:{xl}/{yl}"
+    if sym == "v" or not rel.pair:
+        if rel.group == "I" and sym == "v":
+            return  # the crank tip's velocity relative to the fixed pivot is its absolute velocity
+        value = float(np.linalg.norm(b.quantity(rel.x, link) - b.quantity(rel.y, link)))
+        b.vector(q, tail, head, value, "relative")
+        if rel.pair:
+            b.line(tail, J(r), [head], q, rel.group)
+        return
+    w, e = float(state.omega[b.i]), float(state.epsilon[b.i])
+    normal = -w * w * r
+    if rel.group == "I" and e == 0.0:
+        return  # a crank turning uniformly: πa is the normal component itself
+    n_label = f"n_{xl}{yl}"
+    n_xy = tuple(float(c) for c in np.add(tail, normal / b.mu))
+    b.points[n_label] = n_xy
+    b.vector(f"{q}:n", tail, n_xy, float(np.linalg.norm(normal)), "normal")
+    b.vector(f"{q}:t", n_xy, head, abs(e) * float(np.linalg.norm(r)), "tangential")
+    b.line(n_xy, J(r), [head], f"{q}:t", rel.group)
+
+
+def _slide(b: _Builder, rel: Relation, sym: str, pole) -> None:
+    motion, slider, guide = b.motion, rel.link, rel.other
+    pr = next(p for p in motion.mechanism.prismatics if p.slider == slider and p.guide == guide)
+    u = motion.links[guide].direction(pr.direction)[b.i]
+    if FRAME in (slider, guide):
+        moving = slider if guide == FRAME else guide
+        b.line(pole, u, [b.image(rel.x, moving)], f"{sym}:{_label(motion, rel.x, moving)}", rel.group)
+        return
+    sl, gl = f"{rel.x}{slider}", f"{rel.x}{guide}"
+    tail, head = b.image(rel.x, slider), b.image(rel.x, guide)
+    q = f"{sym}:{gl}/{sl}"
+    if sym == "v":
+        value = float(np.linalg.norm(b.quantity(rel.x, guide) - b.quantity(rel.x, slider)))
+        b.vector(q, tail, head, value, "relative")
+        b.line(tail, u, [head], q, rel.group)
+        return
+    # a_guide = a_slider + a^k + a^r with a^k = 2 ω × (v_guide − v_slider)
+    v_rel = b.quantity_v(rel.x, guide) - b.quantity_v(rel.x, slider)
+    coriolis = 2.0 * float(motion.links[guide].omega[b.i]) * J(v_rel)
+    k_label = f"k_{gl}{sl}"
+    k_xy = tuple(float(c) for c in np.add(tail, coriolis / b.mu))
+    b.points[k_label] = k_xy
+    a_rel = b.quantity(rel.x, guide) - b.quantity(rel.x, slider) - coriolis
+    b.vector(f"{q}:cor", tail, k_xy, float(np.linalg.norm(coriolis)), "coriolis")
+    b.vector(f"{q}:r", k_xy, head, float(np.linalg.norm(a_rel)), "sliding")
+    b.line(k_xy, u, [head], f"{q}:r", rel.group)

@@ -1,0 +1,176 @@
+"""The whole path for one scene: read → model → structure → kinematics → constructions →
+SVG and JSON text → files. Nothing is written until everything has been computed and
+checked, so a failing scene leaves no partial files behind."""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .checking import check_plan, similarity_ratio
+from .constructions import Scales, acceleration_plan, choose_scales, scheme, velocity_plan
+from .constructions.scales import extent_of
+from .drawing import Style, draw_plan, draw_scheme
+from .errors import PlansError
+from .kinematics import WARN_SIN, Motion, analyse
+from .model import build_mechanism
+from .scene import FRAME, Scene, read_scene
+from .structure import analyse_structure
+
+__all__ = ["Rendered", "render_scene", "report", "write_files", "solve_scene"]
+
+
+@dataclass(frozen=True)
+class Rendered:
+    """The files of one scene (name → text), its motion, scales and warnings."""
+
+    stem: str
+    files: dict[str, str]
+    motion: Motion
+    scales: Scales
+    warnings: tuple[str, ...]
+
+
+def solve_scene(scene: Scene) -> Motion:
+    """Solve a scene to the order its drawings need (scheme only: positions)."""
+    mech = build_mechanism(scene)
+    structure = analyse_structure(mech)
+    order = 2 if "acceleration" in scene.draw else 1 if "velocity" in scene.draw else 0
+    return analyse(mech, structure, order=order)
+
+
+def _scales(scene: Scene, motion: Motion) -> Scales:
+    mech = motion.mechanism
+    pts = np.stack([motion.position(p) for p in mech.sketch], axis=1)  # (N, P, 2)
+    v_ref = a_ref = None
+    v_ext = a_ext = 0.0
+    ref_point = mech.drive.tip if mech.drive.kind == "rotary" else mech.drive.guide.label
+    if motion.order >= 1:
+        vel = np.stack([motion.velocity(p) for p in mech.sketch], axis=1)
+        v_ref = float(np.max(np.linalg.norm(motion.velocity(ref_point), axis=1)))
+        v_ext = max(max(extent_of(np.concatenate([v, [[0.0, 0.0]]]))) for v in vel)
+    if motion.order >= 2:
+        acc = np.stack([motion.acceleration(p) for p in mech.sketch], axis=1)
+        a_ref = float(np.max(np.linalg.norm(motion.acceleration(ref_point), axis=1)))
+        a_ext = max(max(extent_of(np.concatenate([a, [[0.0, 0.0]]]))) for a in acc)
+    return choose_scales(extent=extent_of(pts), v_ref=v_ref, v_extent=v_ext, a_ref=a_ref, a_extent=a_ext,
+                         overrides=scene.scales)
+
+
+def _suffix(motion: Motion, i: int) -> str:
+    if len(motion) == 1:
+        return ""
+    return "-" + f"{motion.values[i]:g}".replace("-", "m")
+
+
+def _position_label(motion: Motion, i: int) -> str:
+    v = motion.values[i]
+    d = motion.mechanism.drive
+    return f"φ1 = {v:g}°, ω1 = {d.speed:g} rad/s, ε1 = {d.rate:g} rad/s²" if d.kind == "rotary" else \
+        f"s = {v:g} m, v = {d.speed:g} m/s, a = {d.rate:g} m/s²"
+
+
+def report(scene: Scene, motion: Motion, scales: Scales) -> dict:
+    """The JSON report: structure and, per position, points, links, scales (SI)."""
+    mech = motion.mechanism
+    key = "angle" if mech.drive.kind == "rotary" else "displacement"
+    positions = []
+    r = {p: motion.position(p) for p in mech.sketch}
+    v = {p: motion.velocity(p) for p in mech.sketch} if motion.order >= 1 else {}
+    a = {p: motion.acceleration(p) for p in mech.sketch} if motion.order >= 2 else {}
+    for i, value in enumerate(motion.values):
+        points = {}
+        for p in mech.sketch:
+            entry = {"r": [float(c) for c in r[p][i]]}
+            if v:
+                entry["v"] = [float(c) for c in v[p][i]]
+            if a:
+                entry["a"] = [float(c) for c in a[p][i]]
+            points[p] = entry
+        links = {}
+        if motion.order >= 1:
+            for name, state in motion.links.items():
+                links[name] = {"omega": float(state.omega[i])}
+                if motion.order >= 2:
+                    links[name]["epsilon"] = float(state.epsilon[i])
+        pos = {key: float(value), "points": points, "links": links, "scales": scales.as_dict()}
+        if motion.sines:
+            pos["conditioning"] = {g: float(s[i]) for g, s in motion.sines.items()}
+        if not links:
+            del pos["links"]
+        positions.append(pos)
+    return {"title": scene.title, "structure": motion.structure.as_dict(), "positions": positions}
+
+
+def render_scene(path: str | Path, style: Style = Style()) -> Rendered:
+    """Compute every file of a scene (nothing is written)."""
+    scene = read_scene(path)
+    stem = Path(path).stem
+    try:
+        motion = solve_scene(scene)
+    except PlansError as exc:
+        raise exc.in_file(str(path)) if hasattr(exc, "in_file") else exc
+    scales = _scales(scene, motion)
+    files: dict[str, str] = {}
+    warnings = []
+    formula = motion.structure.formula
+    for i in range(len(motion)):
+        sfx = _suffix(motion, i)
+        label = _position_label(motion, i)
+        for g, s in motion.sines.items():
+            if abs(s[i]) < WARN_SIN:
+                warnings.append(f"{stem}: group {g} is near a singular position at {motion.values[i]:g} "
+                                f"(sin = {s[i]:.2e}); values are exact but sensitive")
+        if "scheme" in scene.draw:
+            sch = scheme(motion, i, scales.mu_l)
+            files[f"{stem}-scheme{sfx}.svg"] = draw_scheme(sch, title=scene.title, subtitle=f"Scheme, {label}",
+                                                           formula=formula, ident=f"scheme{sfx or ''}", style=style)
+        for kind, builder, mu in (("velocity", velocity_plan, scales.mu_v), ("acceleration", acceleration_plan,
+                                                                              scales.mu_a)):
+            if kind not in scene.draw:
+                continue
+            plan = builder(motion, i, mu)
+            failures = check_plan(plan) + _similarity(motion, plan, i)
+            if failures:
+                raise PlansError(f"{path}: {kind} plan at {motion.values[i]:g} failed its geometric check: "
+                                 f"{failures[0]} (please report this scene)")
+            files[f"{stem}-{kind}{sfx}.svg"] = draw_plan(plan, title=f"{scene.title}: {kind} plan",
+                                                         subtitle=label, ident=f"{kind}{sfx or ''}", style=style)
+    files[f"{stem}.json"] = json.dumps(report(scene, motion, scales), indent=1, ensure_ascii=False) + "\n"
+    return Rendered(stem, files, motion, scales, tuple(warnings))
+
+
+def _similarity(motion: Motion, plan, i: int, tol: float = 1e-9) -> list[str]:
+    """Images of a link's points form a figure similar to the link (similarity theorem)."""
+    out = []
+    for link, labels in plan.similar:
+        names = motion.mechanism.links[link].points
+        figure = [tuple(motion.position(p)[i]) for p in names]
+        image = [plan.point(l) for l in labels]
+        if max(math.dist(image[0], q) for q in image) < 1e-9:
+            continue  # the link is at rest on this plan: its image is one point
+        dev = similarity_ratio(figure, image)
+        if dev > 1e-6:
+            out.append(f"images of link {link} are not similar to it (side ratios differ by {dev:.2e})")
+    return out
+
+
+def write_files(files: dict[str, str], out_dir: str | Path) -> list[Path]:
+    """Write all files, each atomically (temporary file + rename)."""
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    written = []
+    for name, text in files.items():
+        target = out / name
+        fd, tmp = tempfile.mkstemp(dir=out, prefix=f".{name}.")
+        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as fh:
+            fh.write(text)
+        os.replace(tmp, target)
+        written.append(target)
+    return written

@@ -1,0 +1,15 @@
+from pathlib import Path
+
+import pytest
+
+EXAMPLES = sorted((Path(__file__).resolve().parent.parent / "plans" / "examples").glob("*.toml"))
+
+
+@pytest.fixture(scope="session")
+def rendered(tmp_path_factory):
+    """Every example rendered once into a temporary folder."""
+    from plans.cli import main
+
+    out = tmp_path_factory.mktemp("render")
+    assert main(["render", *map(str, EXAMPLES), "-o", str(out), "-q"]) == 0
+    return out
