@@ -28,7 +28,7 @@ from ..model import Mechanism
 from ..structure import Group, Joint
 from .state import J, LinkState, cross, rotate
 
-__all__ = ["Candidate", "candidates", "velocities", "accelerations", "SINGULAR_REASON"]
+__all__ = ["Candidate", "candidates", "conditioning", "velocities", "accelerations", "SINGULAR_REASON"]
 
 
 @dataclass(frozen=True)
@@ -220,14 +220,6 @@ def _cramer(U1: np.ndarray, U2: np.ndarray, rhs: np.ndarray) -> tuple[np.ndarray
     return cross(rhs, U2) / safe, cross(U1, rhs) / safe, sin
 
 
-@dataclass(frozen=True)
-class _Frame:
-    """What the velocity and acceleration equations of a group need, at every position."""
-
-    U1: np.ndarray
-    U2: np.ndarray
-
-
 def _geometry(g: Group, mech: Mechanism, states: States) -> dict[str, np.ndarray]:
     """World positions of the group's pair points and guide directions."""
     geo: dict[str, np.ndarray] = {}
@@ -243,6 +235,26 @@ def _geometry(g: Group, mech: Mechanism, states: States) -> dict[str, np.ndarray
         if joint.kind == "P":
             geo[key] = state.direction(joint.prismatic.direction)
     return geo
+
+
+def _directions(g: Group, geo: dict[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """U1, U2: the directions of the two unknowns in the group's velocity equation."""
+    form = g.form
+    if form == "RRR":
+        return -J(geo["E"] - geo["D"]), J(geo["E"] - geo["F"])
+    if form == "RRP":
+        return -J(geo["E"] - geo["D"]), geo["uf"]
+    if form == "RPR":
+        return J(geo["D"] - geo["F"]), geo["ue"]
+    if form == "PRP":
+        return -geo["ud"], geo["uf"]
+    return geo["ue"], geo["uf"]
+
+
+def conditioning(g: Group, mech: Mechanism, states: States) -> np.ndarray:
+    """sin of the angle between U1 and U2 (positions only): 0 at the form's singular position."""
+    U1, U2 = _directions(g, _geometry(g, mech, states))
+    return _cramer(U1, U2, np.zeros_like(U1))[2]
 
 
 def velocities(g: Group, mech: Mechanism, states: dict[str, LinkState]) -> tuple[dict, np.ndarray]:

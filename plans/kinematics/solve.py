@@ -16,13 +16,15 @@ from ..errors import AssemblyError, SingularPositionError
 from ..model import Mechanism
 from ..structure import Structure
 from ..scene import FRAME
-from .groups import SINGULAR_REASON, accelerations, candidates, velocities
+from .groups import SINGULAR_REASON, accelerations, candidates, conditioning, velocities
 from .state import LinkState, Motion, rotate
 
 __all__ = ["analyse", "drive_states", "SINGULAR_SIN", "WARN_SIN", "STEP_DEG"]
 
 #: |sin| of a group's velocity equations below which the position is reported as singular.
-SINGULAR_SIN = 1e-9
+#: At an exact dead centre rounding leaves |sin| ~ sqrt(machine eps) ~ 1e-8, so the bound
+#: sits above that; 1° from a singular position |sin| is still ~1e-2.
+SINGULAR_SIN = 1e-6
 #: |sin| below which the position is reported as near-singular (a warning, values are kept).
 WARN_SIN = 1e-2
 #: Largest continuation step of a crank (degrees).
@@ -129,7 +131,28 @@ def _positions(mech: Mechanism, structure: Structure, values: np.ndarray) -> tup
                                     "lengths or the requested positions", group=f"group {g.name} ({g.form})",
                                     angle=_fmt(mech, target))
         states[g.m], states[g.n] = m_state, n_state
+        _check_crossing(mech, g, conditioning(g, mech, states), grid, sweeps, values)
     return states, index
+
+
+def _check_crossing(mech: Mechanism, g, sin: np.ndarray, grid: np.ndarray, sweeps: list[np.ndarray],
+                    values: np.ndarray) -> None:
+    """Refuse to continue through a singular position: where sin changes sign between two
+    steps of a sweep (and a requested value lies beyond), the branch beyond is ambiguous."""
+    for sweep in sweeps:
+        s = sin[sweep]
+        flips = np.flatnonzero((np.sign(s[:-1]) * np.sign(s[1:]) < 0) | (np.abs(s[:-1]) < SINGULAR_SIN))
+        if not flips.size:
+            continue
+        a, b = grid[sweep[flips[0]]], grid[sweep[flips[0] + 1]]
+        beyond = values[(values - b) * (b - a) >= 0]
+        if beyond.size:
+            target = beyond[np.argmin(np.abs(beyond - b))]
+            raise AssemblyError(
+                f"the walk from the sketch passes a singular position between {_fmt(mech, a)} and {_fmt(mech, b)} "
+                f"({SINGULAR_REASON[g.form].format(m=g.m, n=g.n)}); positions beyond it cannot be reached without "
+                "ambiguity — request positions on the sketch's side or redraw the sketch there",
+                group=f"group {g.name} ({g.form})", angle=_fmt(mech, target))
 
 
 def _select(options: list[LinkState], choice: np.ndarray) -> LinkState:
@@ -146,9 +169,16 @@ def _branch(mech: Mechanism, links: tuple[str, str], options: list, sweeps: list
     if len(options) == 1:
         return np.zeros(n, dtype=int)
     locals_ = [(name, mech.links[name].local[p], p) for name in links for p in mech.links[name].points]
-    sig = [np.concatenate([getattr(o, "m" if name == links[0] else "n").point(x) for name, x, _ in locals_], axis=1)
-           for o in options]
-    sketch = np.concatenate([mech.sketch[p] for _, _, p in locals_])
+    size = mech.size
+
+    def signature(o) -> np.ndarray:
+        # the links' points and orientations: branches differ in one or the other
+        pts = [getattr(o, "m" if name == links[0] else "n").point(x) for name, x, _ in locals_]
+        turn = [size * np.stack([np.cos(s.theta), np.sin(s.theta)], axis=1) for s in (o.m, o.n)]
+        return np.concatenate(pts + turn, axis=1)
+
+    sig = [signature(o) for o in options]
+    sketch = np.concatenate([mech.sketch[p] for _, _, p in locals_] + [np.array([size, 0.0, size, 0.0])])
     # an invalid option is never preferred over a valid one
     penalty = [np.where(o.valid, 0.0, np.inf) for o in options]
     choice = np.zeros(n, dtype=int)
