@@ -177,3 +177,13 @@ def test_plan_images_are_scaled_velocities(rendered):
     vb = lines["v:B"]
     d = np.array([float(vb.get("x2")) - float(vb.get("x1")), -(float(vb.get("y2")) - float(vb.get("y1")))])
     assert d * mu == pytest.approx(pos["points"]["B"]["v"], abs=2e-3 * mu)
+
+
+def test_committed_gallery_passes_check(capsys):
+    """The rendered gallery in output/ (made by the README's first command) measures right."""
+    from pathlib import Path
+
+    gallery = sorted(map(str, (Path(__file__).resolve().parent.parent / "output").glob("*.svg")))
+    assert len(gallery) >= 3 * len(EXAMPLES)
+    assert main(["check", *gallery]) == 0
+    assert " 0 outside" in capsys.readouterr().out

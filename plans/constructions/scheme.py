@@ -76,8 +76,10 @@ def scheme(motion: Motion, i: int, mu_l: float) -> Scheme:
         travel = motion.position(pr.label) / mu_l
         anchors = state.point(pr.anchor[pr.guide]) / mu_l
         rel = [float(np.dot(travel[j] - anchors[j], u[j])) for j in range(len(travel))]
-        t0 = min(rel + [0.0]) - GUIDE_MARGIN_MM - BLOCK_MM[0] / 2
-        t1 = max(rel + [0.0]) + GUIDE_MARGIN_MM + BLOCK_MM[0] / 2
+        # a frame guide runs past the travel; a moving guide (a slotted link) stays within it
+        margin = BLOCK_MM[0] / 2 + (GUIDE_MARGIN_MM if pr.guide == FRAME else 0.0)
+        t0 = min(rel + [0.0]) - margin
+        t1 = max(rel + [0.0]) + margin
         guides.append(Guide(pr.guide, _xy(anchor + t0 * u[i]), _xy(anchor + t1 * u[i]), pr.guide == FRAME))
     links = tuple((name, mech.links[name].points) for name in mech.moving)
     d = mech.drive

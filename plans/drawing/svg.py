@@ -246,10 +246,12 @@ def draw_scheme(sch: Scheme, *, title: str, subtitle: str, formula: str, ident: 
     dwg.add(g)
     labels = dwg.g(id=f"{ident}-labels", fill=style.colour)
     centre = np.mean(list(sch.points.values()), axis=0)
+    on_block = {b.center for b in sch.blocks}
     for k, (name, xy) in enumerate(sch.points.items()):
         away = np.subtract(xy, centre)
         away = away / (np.linalg.norm(away) or 1.0)
-        at = (xy[0] + 4.0 * away[0] - 1.0, xy[1] + 4.0 * away[1] + 1.0)
+        reach = 9.0 if xy in on_block else 4.5   # clear of a slider block, else of the joint circle
+        at = (xy[0] + reach * away[0] - 1.0, xy[1] + reach * away[1] - 1.2)
         labels.add(_text(dwg, paper, at, name, size=style.text, ident=f"{ident}-p{k}"))
     for name, pts in sch.links:
         xy = np.array([sch.points[p] for p in pts])
