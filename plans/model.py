@@ -118,8 +118,6 @@ class Mechanism:
         pts = np.array(list(self.sketch.values()))
         return float(np.hypot(*(pts.max(axis=0) - pts.min(axis=0)))) or 1.0
 
-    def pairs_of(self, link: str) -> list[Revolute | Prismatic]:
-        return [p for p in (*self.revolutes, *self.prismatics) if link in (p.a, p.b)]
 
 
 def build_mechanism(scene: Scene) -> Mechanism:
@@ -195,9 +193,8 @@ def _prismatic(s: Slider, links: Mapping[str, Link], sketch: Mapping[str, np.nda
     for name in (s.link, s.on):
         local = links[name].local
         anchor[name] = next((local[t] for t in s.through if t in local), sketch[p]).copy()
-    # the pair is named on plans by the slider's point on the line (or the first through point)
-    on_line = [t for t in links[s.link].points]
-    label = next((t for t in s.through if t in links[s.link].local), on_line[0])
+    # the pair is named on plans by the slider's point on the line (else the slider's first point)
+    label = next((t for t in s.through if t in links[s.link].local), links[s.link].points[0])
     return Prismatic(slider=s.link, guide=s.on, anchor=anchor, direction=direction, label=label, index=s.index)
 
 

@@ -20,7 +20,7 @@ from .drawing import Style, draw_plan, draw_scheme
 from .errors import PlansError
 from .kinematics import WARN_SIN, Motion, analyse
 from .model import build_mechanism
-from .scene import FRAME, Scene, read_scene
+from .scene import Scene, read_scene
 from .structure import analyse_structure
 
 __all__ = ["Rendered", "render_scene", "report", "write_files", "solve_scene"]

@@ -41,7 +41,6 @@ class _Paper:
         self.width = max(content_w + 2 * style.margin, width_min)
         self.height = (y1 - y0) + 2 * style.margin + style.header + style.footer
         self.dx = -x0 + (self.width - content_w) / 2
-        self.top = y1 + style.margin + style.header - style.margin  # y1 maps to margin + header
         self.y1 = y1
 
     def __call__(self, p: Sequence[float]) -> tuple[float, float]:
@@ -98,6 +97,26 @@ def _bbox(points: Iterable[Sequence[float]]) -> tuple[float, float, float, float
     return float(x0) - 6, float(y0) - 6, float(x1) + 6, float(y1) + 6
 
 
+def _header(dwg: svgwrite.Drawing, paper: _Paper, title: str, subtitle: str, ident: str):
+    """Title and subtitle, centred at the top of the sheet."""
+    s = paper.style
+    head = dwg.g(id=f"{ident}-head")
+    head.add(_text(dwg, paper, (paper.width / 2, s.margin + 2), title, size=s.title_text, italic=False, paper_xy=True))
+    head.add(_text(dwg, paper, (paper.width / 2, s.margin + 8), subtitle, size=s.small_text, italic=False,
+                   paper_xy=True))
+    return head
+
+
+def _legend(dwg: svgwrite.Drawing, paper: _Paper, ident: str, *rows: tuple[str, float]):
+    """Lines of text (text, height) at the bottom left of the sheet."""
+    s = paper.style
+    foot = dwg.g(id=f"{ident}-legend")
+    y = paper.height - s.footer + 8
+    for k, (text, size) in enumerate(rows):
+        foot.add(_text(dwg, paper, (s.margin, y + 6 * k), text, size=size, italic=False, anchor="start", paper_xy=True))
+    return foot
+
+
 def _title_width(title: str, style: Style) -> float:
     """Paper width that holds a title line (serif glyphs average about 0.55 of the text height)."""
     return len(title) * 0.55 * style.title_text + 2 * style.margin
@@ -112,12 +131,7 @@ def draw_plan(plan: Plan, *, title: str, subtitle: str, ident: str, style: Style
     coords = [p.xy for p in plan.points] + [l.start for l in plan.lines] + [l.end for l in plan.lines]
     paper = _Paper(_bbox(coords), style, width_min=_title_width(title, style))
     dwg = _drawing(paper, ident)
-    head = dwg.g(id=f"{ident}-head")
-    head.add(_text(dwg, paper, (paper.width / 2, style.margin + 2), title, size=style.title_text, italic=False,
-                   paper_xy=True))
-    head.add(_text(dwg, paper, (paper.width / 2, style.margin + 8), subtitle, size=style.small_text, italic=False,
-                   paper_xy=True))
-    dwg.add(head)
+    dwg.add(_header(dwg, paper, title, subtitle, ident))
     g = dwg.g(id=f"{ident}-plan")
     g.attribs["data-mu"] = repr(plan.mu)
     g.attribs["data-plan"] = plan.kind
@@ -155,13 +169,8 @@ def draw_plan(plan: Plan, *, title: str, subtitle: str, ident: str, style: Style
     dwg.add(g)
     unit = _unit(plan.kind)
     sym = "μV" if plan.kind == "velocity" else "μa"
-    foot = dwg.g(id=f"{ident}-legend")
-    y = paper.height - style.footer + 8
-    foot.add(_text(dwg, paper, (style.margin, y), f"{sym} = {plan.mu:g} {unit}", size=style.text, italic=False,
-                   anchor="start", paper_xy=True))
-    foot.add(_text(dwg, paper, (style.margin, y + 6), f"pole {plan.pole}; every vector = drawn length × {sym}",
-                   size=style.small_text, italic=False, anchor="start", paper_xy=True))
-    dwg.add(foot)
+    dwg.add(_legend(dwg, paper, ident, (f"{sym} = {plan.mu:g} {unit}", style.text),
+                    (f"pole {plan.pole}; every vector = drawn length × {sym}", style.small_text)))
     return dwg.tostring()
 
 
@@ -181,12 +190,7 @@ def draw_scheme(sch: Scheme, *, title: str, subtitle: str, formula: str, ident: 
     coords = list(sch.points.values()) + [g.start for g in sch.guides] + [g.end for g in sch.guides]
     paper = _Paper(_bbox(coords), style, width_min=max(140.0, _title_width(title, style)))
     dwg = _drawing(paper, ident)
-    head = dwg.g(id=f"{ident}-head")
-    head.add(_text(dwg, paper, (paper.width / 2, style.margin + 2), title, size=style.title_text, italic=False,
-                   paper_xy=True))
-    head.add(_text(dwg, paper, (paper.width / 2, style.margin + 8), subtitle, size=style.small_text, italic=False,
-                   paper_xy=True))
-    dwg.add(head)
+    dwg.add(_header(dwg, paper, title, subtitle, ident))
     g = dwg.g(id=f"{ident}-scheme", stroke=style.colour, fill="none", stroke_linecap="round")
     g.attribs["data-mu"] = repr(sch.mu_l)
     g.attribs["data-plan"] = "scheme"
@@ -265,11 +269,5 @@ def draw_scheme(sch: Scheme, *, title: str, subtitle: str, formula: str, ident: 
         labels.add(_text(dwg, paper, (mid[0], mid[1]), name, size=style.small_text, italic=False,
                          ident=f"{ident}-n{name}"))
     dwg.add(labels)
-    foot = dwg.g(id=f"{ident}-legend")
-    y = paper.height - style.footer + 8
-    foot.add(_text(dwg, paper, (style.margin, y), f"μl = {sch.mu_l:g} m/mm", size=style.text, italic=False,
-                   anchor="start", paper_xy=True))
-    foot.add(_text(dwg, paper, (style.margin, y + 6), formula, size=style.text, italic=False, anchor="start",
-                   paper_xy=True))
-    dwg.add(foot)
+    dwg.add(_legend(dwg, paper, ident, (f"μl = {sch.mu_l:g} m/mm", style.text), (formula, style.text)))
     return dwg.tostring()

@@ -260,39 +260,40 @@ def conditioning(g: Group, mech: Mechanism, states: States) -> np.ndarray:
 def velocities(g: Group, mech: Mechanism, states: dict[str, LinkState]) -> tuple[dict, np.ndarray]:
     """Set ω and v of the group's links in ``states``; return the sliding speeds σ and sin."""
     geo = _geometry(g, mech, states)
+    U1, U2 = _directions(g, geo)
     k, p = states[g.d.other], states[g.f.other]
     m, n = states[g.m], states[g.n]
     form = g.form
     if form == "RRR":
         D, E, F = geo["D"], geo["E"], geo["F"]
-        wm, wn, sin = _cramer(-J(E - D), J(E - F), k.velocity(D) - p.velocity(F))
+        wm, wn, sin = _cramer(U1, U2, k.velocity(D) - p.velocity(F))
         states[g.m] = m.with_velocity(wm, D, k.velocity(D))
         states[g.n] = n.with_velocity(wn, F, p.velocity(F))
         return {}, sin
     if form == "RRP":
         D, E, u = geo["D"], geo["E"], geo["uf"]
         vEp = p.velocity(E)
-        wm, s, sin = _cramer(-J(E - D), u, k.velocity(D) - vEp)
+        wm, s, sin = _cramer(U1, U2, k.velocity(D) - vEp)
         states[g.m] = m.with_velocity(wm, D, k.velocity(D))
         states[g.n] = n.with_velocity(p.omega, E, vEp + s[:, None] * u)
         return {"f": s}, sin
     if form == "RPR":
         D, F, u = geo["D"], geo["F"], geo["ue"]
-        w, s, sin = _cramer(J(D - F), u, k.velocity(D) - p.velocity(F))
+        w, s, sin = _cramer(U1, U2, k.velocity(D) - p.velocity(F))
         states[g.m] = m.with_velocity(w, D, k.velocity(D))
         states[g.n] = n.with_velocity(w, F, p.velocity(F))
         return {"e": s}, sin
     if form == "PRP":
         E, u1, u2 = geo["E"], geo["ud"], geo["uf"]
         vEk, vEp = k.velocity(E), p.velocity(E)
-        s1, s2, sin = _cramer(-u1, u2, vEk - vEp)
+        s1, s2, sin = _cramer(U1, U2, vEk - vEp)
         states[g.m] = m.with_velocity(k.omega, E, vEk + s1[:, None] * u1)
         states[g.n] = n.with_velocity(p.omega, E, vEp + s2[:, None] * u2)
         return {"d": s1, "f": s2}, sin
     # RPP
-    D, ue, uf = geo["D"], geo["ue"], geo["uf"]
+    D, _ue, uf = geo["D"], geo["ue"], geo["uf"]
     vDp = p.velocity(D)
-    se, sf, sin = _cramer(ue, uf, k.velocity(D) - vDp)
+    se, sf, sin = _cramer(U1, U2, k.velocity(D) - vDp)
     states[g.m] = m.with_velocity(p.omega, D, k.velocity(D))
     states[g.n] = n.with_velocity(p.omega, D, vDp + sf[:, None] * uf)
     return {"e": se, "f": sf}, sin
@@ -301,6 +302,7 @@ def velocities(g: Group, mech: Mechanism, states: dict[str, LinkState]) -> tuple
 def accelerations(g: Group, mech: Mechanism, states: dict[str, LinkState], sliding: dict) -> None:
     """Set ε and a of the group's links in ``states`` (velocities must be set)."""
     geo = _geometry(g, mech, states)
+    U1, U2 = _directions(g, geo)
     k, p = states[g.d.other], states[g.f.other]
     m, n = states[g.m], states[g.n]
     form = g.form
@@ -316,7 +318,7 @@ def accelerations(g: Group, mech: Mechanism, states: dict[str, LinkState], slidi
         D, E, F = geo["D"], geo["E"], geo["F"]
         aD, aF = k.acceleration(D), p.acceleration(F)
         rhs = aD - aF - sq(m.omega) * (E - D) + sq(n.omega) * (E - F)
-        em, en, _ = _cramer(-J(E - D), J(E - F), rhs)
+        em, en, _ = _cramer(U1, U2, rhs)
         states[g.m] = m.with_acceleration(em, D, aD)
         states[g.n] = n.with_acceleration(en, F, aF)
     elif form == "RRP":
@@ -324,7 +326,7 @@ def accelerations(g: Group, mech: Mechanism, states: dict[str, LinkState], slidi
         s = sliding["f"]
         aD, aEp = k.acceleration(D), p.acceleration(E)
         rhs = aD - sq(m.omega) * (E - D) - aEp - cor(p.omega, s, u)
-        em, ds, _ = _cramer(-J(E - D), u, rhs)
+        em, ds, _ = _cramer(U1, U2, rhs)
         states[g.m] = m.with_acceleration(em, D, aD)
         states[g.n] = n.with_acceleration(p.epsilon, E, aEp + ds[:, None] * u + cor(p.omega, s, u))
     elif form == "RPR":
@@ -332,7 +334,7 @@ def accelerations(g: Group, mech: Mechanism, states: dict[str, LinkState], slidi
         s, w = sliding["e"], m.omega
         aD, aF = k.acceleration(D), p.acceleration(F)
         rhs = aD - aF + sq(w) * (D - F) - cor(w, s, u)
-        e, _, _ = _cramer(J(D - F), u, rhs)
+        e, _, _ = _cramer(U1, U2, rhs)
         states[g.m] = m.with_acceleration(e, D, aD)
         states[g.n] = n.with_acceleration(e, F, aF)
     elif form == "PRP":
@@ -340,7 +342,7 @@ def accelerations(g: Group, mech: Mechanism, states: dict[str, LinkState], slidi
         s1, s2 = sliding["d"], sliding["f"]
         aEk = k.acceleration(E) + cor(k.omega, s1, u1)
         aEp = p.acceleration(E) + cor(p.omega, s2, u2)
-        ds1, ds2, _ = _cramer(-u1, u2, aEk - aEp)
+        ds1, ds2, _ = _cramer(U1, U2, aEk - aEp)
         states[g.m] = m.with_acceleration(k.epsilon, E, aEk + ds1[:, None] * u1)
         states[g.n] = n.with_acceleration(p.epsilon, E, aEp + ds2[:, None] * u2)
     else:  # RPP
@@ -349,6 +351,6 @@ def accelerations(g: Group, mech: Mechanism, states: dict[str, LinkState], slidi
         aD = k.acceleration(D)
         aDp = p.acceleration(D)
         rhs = aD - aDp - cor(w, se, ue) - cor(w, sf, uf)
-        dse, dsf, _ = _cramer(ue, uf, rhs)
+        dse, dsf, _ = _cramer(U1, U2, rhs)
         states[g.m] = m.with_acceleration(p.epsilon, D, aD)
         states[g.n] = n.with_acceleration(p.epsilon, D, aDp + dsf[:, None] * uf + cor(w, sf, uf))
