@@ -46,7 +46,7 @@ def analyse(mech: Mechanism, structure: Structure, values: np.ndarray | None = N
             bad = np.flatnonzero(np.abs(sines[g.name]) < SINGULAR_SIN)
             if bad.size:
                 raise SingularPositionError(SINGULAR_REASON[g.form].format(m=g.m, n=g.n),
-                                            group=f"group {g.name} ({g.form})", angle=_fmt(mech, values[bad[0]]))
+                                            group=_group_label(g), angle=_fmt(mech, values[bad[0]]))
         if order >= 2:
             for g in structure.groups:
                 accelerations(g, mech, states, sliding[g.name])
@@ -124,11 +124,12 @@ def _positions(mech: Mechanism, structure: Structure, values: np.ndarray) -> tup
             bad = np.flatnonzero(~valid[sweep])
             if bad.size:
                 i = sweep[bad[0]]
-                after = values[(values - grid[i]) * (grid[sweep[-1]] - grid[0]) >= 0]
-                target = after[np.argmin(np.abs(after - grid[i]))] if after.size else grid[i]
-                where = "" if grid[i] == target else f" (the walk from the sketch at {_fmt(mech, grid[0])} fails at {_fmt(mech, grid[i])})"
+                target = _requested_beyond(values, grid[i], grid[sweep[-1]] - grid[0])
+                target = grid[i] if target is None else target
+                where = "" if grid[i] == target else (f" (the walk from the sketch at {_fmt(mech, grid[0])} "
+                                                      f"fails at {_fmt(mech, grid[i])})")
                 raise AssemblyError(f"cannot assemble: {options[int(choice[i])].why(i)}{where}; check the "
-                                    "lengths or the requested positions", group=f"group {g.name} ({g.form})",
+                                    "lengths or the requested positions", group=_group_label(g),
                                     angle=_fmt(mech, target))
         states[g.m], states[g.n] = m_state, n_state
         _check_crossing(mech, g, conditioning(g, mech, states), grid, sweeps, values)
@@ -145,14 +146,23 @@ def _check_crossing(mech: Mechanism, g, sin: np.ndarray, grid: np.ndarray, sweep
         if not flips.size:
             continue
         a, b = grid[sweep[flips[0]]], grid[sweep[flips[0] + 1]]
-        beyond = values[(values - b) * (b - a) >= 0]
-        if beyond.size:
-            target = beyond[np.argmin(np.abs(beyond - b))]
+        target = _requested_beyond(values, b, b - a)
+        if target is not None:
             raise AssemblyError(
                 f"the walk from the sketch passes a singular position between {_fmt(mech, a)} and {_fmt(mech, b)} "
                 f"({SINGULAR_REASON[g.form].format(m=g.m, n=g.n)}); positions beyond it cannot be reached without "
                 "ambiguity — request positions on the sketch's side or redraw the sketch there",
-                group=f"group {g.name} ({g.form})", angle=_fmt(mech, target))
+                group=_group_label(g), angle=_fmt(mech, target))
+
+
+def _group_label(g) -> str:
+    return f"group {g.name} ({g.form})"
+
+
+def _requested_beyond(values: np.ndarray, at: float, direction: float) -> float | None:
+    """The requested value nearest ``at`` on or past it in the walk's ``direction`` (None if none)."""
+    beyond = values[(values - at) * direction >= 0]
+    return float(beyond[np.argmin(np.abs(beyond - at))]) if beyond.size else None
 
 
 def _select(options: list[LinkState], choice: np.ndarray) -> LinkState:
