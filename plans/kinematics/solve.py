@@ -16,10 +16,13 @@ from ..errors import AssemblyError, SingularPositionError
 from ..model import Mechanism
 from ..structure import Structure
 from ..scene import FRAME
+from ..structure import ComplexGroup
+from . import special
+from .generic import GroupEquations
 from .groups import SINGULAR_REASON, accelerations, candidates, conditioning, velocities
 from .state import LinkState, Motion, rotate
 
-__all__ = ["analyse", "drive_states", "SINGULAR_SIN", "WARN_SIN", "STEP_DEG"]
+__all__ = ["analyse", "drive_states", "singular_reason", "group_condition", "SINGULAR_SIN", "WARN_SIN", "STEP_DEG", "JUMP_RATIO"]
 
 #: |sin| of a group's velocity equations below which the position is reported as singular.
 #: At an exact dead centre rounding leaves |sin| ~ sqrt(machine eps) ~ 1e-8, so the bound
@@ -29,6 +32,20 @@ SINGULAR_SIN = 1e-6
 WARN_SIN = 1e-2
 #: Largest continuation step of a crank (degrees).
 STEP_DEG = 1.0
+#: A class III/IV step whose points move more than JUMP_RATIO times the previous step
+#: (and more than 1 % of the mechanism's size) is a jump to another assembly branch.
+JUMP_RATIO = 8.0
+
+
+def singular_reason(g) -> str:
+    """Why group ``g`` has no unique solution at a singular position."""
+    if not isinstance(g, ComplexGroup):
+        return SINGULAR_REASON[g.form].format(m=g.m, n=g.n)
+    if g.base is not None:
+        rods = ", ".join(r.link for r in g.rods)
+        return (f"the axes of rods {rods} meet in one point (the special points coincide, their construction "
+                "lines are parallel): the group's velocity equations have no unique solution")
+    return "the group's velocity equations (its Jacobian) are singular: the closed contour is at a dead position"
 
 
 def analyse(mech: Mechanism, structure: Structure, values: np.ndarray | None = None, *, order: int = 2) -> Motion:
@@ -42,15 +59,34 @@ def analyse(mech: Mechanism, structure: Structure, values: np.ndarray | None = N
         _set_drive_rates(mech, states, values)
         sliding = {}
         for g in structure.groups:
+            if isinstance(g, ComplexGroup):
+                sines[g.name] = group_condition(mech, g, states)
+                _refuse_singular(mech, g, sines[g.name], values)
+                GroupEquations(mech, g.links, g.pairs).velocities(states)
+                continue
             sliding[g.name], sines[g.name] = velocities(g, mech, states)
-            bad = np.flatnonzero(np.abs(sines[g.name]) < SINGULAR_SIN)
-            if bad.size:
-                raise SingularPositionError(SINGULAR_REASON[g.form].format(m=g.m, n=g.n),
-                                            group=_group_label(g), angle=_fmt(mech, values[bad[0]]))
+            _refuse_singular(mech, g, sines[g.name], values)
         if order >= 2:
             for g in structure.groups:
-                accelerations(g, mech, states, sliding[g.name])
+                if isinstance(g, ComplexGroup):
+                    GroupEquations(mech, g.links, g.pairs).accelerations(states)
+                else:
+                    accelerations(g, mech, states, sliding[g.name])
     return Motion(mechanism=mech, structure=structure, values=values, order=order, links=states, sines=sines)
+
+
+def group_condition(mech: Mechanism, g: ComplexGroup, states: dict[str, LinkState]) -> np.ndarray:
+    """A class III/IV group's condition figure (±1 well conditioned, 0 singular): the rods'
+    axes for a class III group, else the scaled Jacobian's σ_min/σ_max."""
+    if special.supports(g):
+        return special.condition(g, mech, states)
+    return GroupEquations(mech, g.links, g.pairs).condition(states)
+
+
+def _refuse_singular(mech: Mechanism, g, sin: np.ndarray, values: np.ndarray) -> None:
+    bad = np.flatnonzero(np.abs(sin) < SINGULAR_SIN)
+    if bad.size:
+        raise SingularPositionError(singular_reason(g), group=_group_label(g), angle=_fmt(mech, values[bad[0]]))
 
 
 def _fmt(mech: Mechanism, value: float) -> str:
@@ -115,6 +151,11 @@ def _positions(mech: Mechanism, structure: Structure, values: np.ndarray) -> tup
     states = drive_states(mech, grid)
     tol = 1e-12 * mech.size
     for g in structure.groups:
+        if isinstance(g, ComplexGroup):
+            eq = GroupEquations(mech, g.links, g.pairs)
+            states.update(_continue(mech, g, eq, states, grid, sweeps, values))
+            _check_crossing(mech, g, group_condition(mech, g, states), grid, sweeps, values)
+            continue
         options = candidates(g, mech, states, tol)
         choice = _branch(mech, g.links, options, sweeps)
         m_state = _select([o.m for o in options], choice)
@@ -150,9 +191,58 @@ def _check_crossing(mech: Mechanism, g, sin: np.ndarray, grid: np.ndarray, sweep
         if target is not None:
             raise AssemblyError(
                 f"the walk from the sketch passes a singular position between {_fmt(mech, a)} and {_fmt(mech, b)} "
-                f"({SINGULAR_REASON[g.form].format(m=g.m, n=g.n)}); positions beyond it cannot be reached without "
+                f"({singular_reason(g)}); positions beyond it cannot be reached without "
                 "ambiguity — request positions on the sketch's side or redraw the sketch there",
                 group=_group_label(g), angle=_fmt(mech, target))
+
+
+def _continue(mech: Mechanism, g: ComplexGroup, eq: GroupEquations, states: dict[str, LinkState],
+              grid: np.ndarray, sweeps: list[np.ndarray], values: np.ndarray) -> dict[str, LinkState]:
+    """Poses of a class III/IV group along the walk: Newton at every step from the previous
+    step (linear predictor), starting at the sketch, where every pose is the identity."""
+    q = np.zeros((len(grid), 3 * len(eq.links)))
+    done = np.zeros(len(grid), dtype=bool)
+    cols = [c for c in range(q.shape[1]) if c % 3 != 2]
+
+    def known(i: int) -> dict[str, LinkState]:
+        return {name: s.take(np.array([i])) for name, s in states.items() if name not in eq.col}
+
+    def fail(i: int, why: str) -> AssemblyError:
+        sweep = next(sw for sw in sweeps if i in sw)
+        target = _requested_beyond(values, grid[i], grid[sweep[-1]] - grid[0])
+        target = grid[i] if target is None else target
+        where = "" if grid[i] == target else f" (the walk from the sketch at {_fmt(mech, grid[0])} fails at " \
+                                             f"{_fmt(mech, grid[i])})"
+        return AssemblyError(f"{why}{where}; check the lengths or the requested positions",
+                             group=_group_label(g), angle=_fmt(mech, target))
+
+    for sweep in sweeps:
+        prev = prev2 = None
+        for i in sweep:
+            if done[i]:
+                prev2, prev = prev, i
+                continue
+            guesses = [q[prev]] if prev is not None else [q[i]]
+            if prev2 is not None:
+                guesses.insert(0, 2.0 * q[prev] - q[prev2])
+            result = None
+            for guess in guesses:
+                result = eq.newton(guess[None, :], known(i))
+                if result.converged:
+                    break
+            if not result.converged:
+                raise fail(i, "cannot assemble: Newton's method finds no position of the group's links "
+                              f"(residual {result.residual:.1e} m), the group falls apart there")
+            q[i] = result.q[0]
+            if prev is not None:
+                moved = np.max(np.abs(q[i, cols] - q[prev, cols]))
+                before = np.max(np.abs(q[prev, cols] - q[prev2, cols])) if prev2 is not None else 0.0
+                if moved > 0.01 * mech.size and moved > JUMP_RATIO * before:
+                    raise fail(i, "the assembly branch would jump between neighbouring steps (a limit "
+                                  "position or a singular position lies there)")
+            done[i] = True
+            prev2, prev = prev, i
+    return {name: LinkState(q[:, c + 2], q[:, c:c + 2]) for name, c in eq.col.items()}
 
 
 def _group_label(g) -> str:

@@ -1,0 +1,249 @@
+"""The generic Assur-group solver: Newton on the pair equations, linear solves for the rates.
+
+Used for class III and IV groups (and usable for any group): the unknowns are the poses
+(x_o, y_o, θ) of the group's links, q ∈ R^{3k}; every pair gives two equations Φ(q) = 0:
+
+* revolute pair at P between links a and b:   X_a(P) − X_b(P) = 0
+* prismatic pair, slider s on guide g:         θ_s − θ_g = 0,  (X_s − Y_g)·n_g = 0
+
+(X_s, Y_g: the pair's anchor points on each link; n_g: the line's normal turned with g).
+Positions: Newton's method, continued along the drive's walk from the sketch (where every
+pose is the identity) with a linear predictor. Velocities and accelerations: the same
+Jacobian A = ∂Φ/∂q multiplies the unknown rates (v_o, ω) and (a_o, ε); the known links' and
+the quadratic (normal, Coriolis) terms form the right-hand side:
+
+    A·q̇ = −Φ̇|q̇=0        A·q̈ = −Φ̈|q̈=0
+
+solved for all positions at once with ``numpy.linalg.solve``. The condition figure of a
+position is ``sign(det A)·σ_min/σ_max`` of A made dimensionless with the mechanism's size (1 = well conditioned, 0 = singular; the sign changes across a singular
+position).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Mapping
+
+import numpy as np
+
+from ..model import Mechanism
+from .state import J, LinkState
+
+__all__ = ["GroupEquations", "NewtonResult", "newton", "TOLERANCE", "MAX_ITER"]
+
+#: Newton stops when the largest equation residual is below TOLERANCE·size (m).
+TOLERANCE = 1e-13
+#: Newton iterations allowed per step before the step is halved.
+MAX_ITER = 30
+
+States = Mapping[str, LinkState]
+
+
+def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    return np.einsum("...i,...i->...", a, b)
+
+
+@dataclass(frozen=True)
+class NewtonResult:
+    """q at the solution, the iterations taken, the final residual (m) and convergence."""
+
+    q: np.ndarray
+    iterations: int
+    residual: float
+    converged: bool
+
+
+class GroupEquations:
+    """The pair equations of one group: residual, Jacobian and rate terms, vectorised over
+    positions. ``links`` are the group's (unknown) links in column order."""
+
+    def __init__(self, mech: Mechanism, links: tuple[str, ...], pairs: tuple):
+        self.mech = mech
+        self.links = tuple(links)
+        self.pairs = tuple(pairs)
+        self.col = {name: 3 * i for i, name in enumerate(self.links)}
+        self.size = mech.size
+        if 2 * len(self.pairs) != 3 * len(self.links):
+            raise ValueError("an Assur group has 3 equations per link: 2 per pair")
+
+    # -- poses -------------------------------------------------------------------------
+    def states(self, q: np.ndarray, known: States) -> dict[str, LinkState]:
+        """All link states with the group's links put at poses ``q`` (N, 3k)."""
+        out = dict(known)
+        for name, c in self.col.items():
+            out[name] = LinkState(q[:, c + 2], q[:, c:c + 2])
+        return out
+
+    def pose(self, states: States) -> np.ndarray:
+        """q (N, 3k) of the group's links in ``states``."""
+        return np.concatenate([np.column_stack([states[n].origin, states[n].theta]) for n in self.links], axis=1)
+
+    # -- equations -----------------------------------------------------------------------
+    def _geometry(self, pair, states: States):
+        if pair.kind == "R":
+            loc = self.mech.links
+            xa = states[pair.a].point(loc[pair.a].local[pair.point])
+            xb = states[pair.b].point(loc[pair.b].local[pair.point])
+            return xa, xb
+        p = pair.prismatic
+        s, g = states[p.slider], states[p.guide]
+        return s.point(p.anchor[p.slider]), g.point(p.anchor[p.guide]), g.direction(p.normal)
+
+    def residual(self, states: States) -> np.ndarray:
+        """Φ (N, 2·pairs): metres for point equations, radians for angle equations."""
+        rows = []
+        for pair in self.pairs:
+            if pair.kind == "R":
+                xa, xb = self._geometry(pair, states)
+                rows += [xa - xb]
+            else:
+                xs, yg, n = self._geometry(pair, states)
+                p = pair.prismatic
+                d = states[p.slider].theta - states[p.guide].theta
+                rows += [np.column_stack([np.arctan2(np.sin(d), np.cos(d)), _dot(xs - yg, n)])]
+        return np.concatenate(rows, axis=1)
+
+    def jacobian(self, states: States) -> np.ndarray:
+        """A = ∂Φ/∂q (N, 2·pairs, 3k) with respect to the group's poses."""
+        n_pos = len(next(iter(states.values())).theta)
+        a = np.zeros((n_pos, 2 * len(self.pairs), 3 * len(self.links)))
+        for k, pair in enumerate(self.pairs):
+            r = 2 * k
+            if pair.kind == "R":
+                xa, _ = self._geometry(pair, states)
+                for link, sign in ((pair.a, 1.0), (pair.b, -1.0)):
+                    if link in self.col:
+                        c = self.col[link]
+                        a[:, r, c] += sign
+                        a[:, r + 1, c + 1] += sign
+                        a[:, r:r + 2, c + 2] += sign * J(xa - states[link].origin)
+                continue
+            p = pair.prismatic
+            xs, yg, n = self._geometry(pair, states)
+            if p.slider in self.col:
+                c = self.col[p.slider]
+                a[:, r, c + 2] += 1.0
+                a[:, r + 1, c:c + 2] += n
+                a[:, r + 1, c + 2] += _dot(J(xs - states[p.slider].origin), n)
+            if p.guide in self.col:
+                c = self.col[p.guide]
+                a[:, r, c + 2] -= 1.0
+                a[:, r + 1, c:c + 2] -= n
+                a[:, r + 1, c + 2] += -_dot(J(yg - states[p.guide].origin), n) + _dot(xs - yg, J(n))
+        return a
+
+    def velocity_terms(self, states: States) -> np.ndarray:
+        """Φ̇ with the group's rates (v_o, ω) set to zero (N, 2·pairs)."""
+        rows = []
+        for pair in self.pairs:
+            if pair.kind == "R":
+                xa, _ = self._geometry(pair, states)
+                rows.append(states[pair.a].velocity(xa) - states[pair.b].velocity(xa))
+                continue
+            p = pair.prismatic
+            s, g = states[p.slider], states[p.guide]
+            xs, yg, n = self._geometry(pair, states)
+            dv = s.velocity(xs) - g.velocity(yg)
+            rows.append(np.column_stack([s.omega - g.omega, _dot(dv, n) + g.omega * _dot(xs - yg, J(n))]))
+        return np.concatenate(rows, axis=1)
+
+    def acceleration_terms(self, states: States) -> np.ndarray:
+        """Φ̈ with the group's (a_o, ε) set to zero, its ω known (N, 2·pairs)."""
+        rows = []
+        for pair in self.pairs:
+            if pair.kind == "R":
+                xa, _ = self._geometry(pair, states)
+                rows.append(states[pair.a].acceleration(xa) - states[pair.b].acceleration(xa))
+                continue
+            p = pair.prismatic
+            s, g = states[p.slider], states[p.guide]
+            xs, yg, n = self._geometry(pair, states)
+            dv = s.velocity(xs) - g.velocity(yg)
+            da = s.acceleration(xs) - g.acceleration(yg)
+            w, e = g.omega, g.epsilon
+            second = _dot(da, n) + 2.0 * w * _dot(dv, J(n)) + _dot(xs - yg, e[:, None] * J(n) - (w * w)[:, None] * n)
+            rows.append(np.column_stack([s.epsilon - g.epsilon, second]))
+        return np.concatenate(rows, axis=1)
+
+    # -- conditioning --------------------------------------------------------------------
+    def _scaled(self, a: np.ndarray) -> np.ndarray:
+        """A with angular columns ÷size and angle rows ×size (every entry dimensionless)."""
+        a = a.copy()
+        a[:, :, 2::3] /= self.size
+        for k, pair in enumerate(self.pairs):
+            if pair.kind == "P":
+                a[:, 2 * k, :] *= self.size
+        return a
+
+    def condition(self, states: States) -> np.ndarray:
+        """sign(det A)·σ_min/σ_max of the scaled Jacobian at every position (N,)."""
+        a = self._scaled(self.jacobian(states))
+        sv = np.linalg.svd(a, compute_uv=False)
+        return np.sign(np.linalg.det(a)) * sv[:, -1] / sv[:, 0]
+
+    # -- solves --------------------------------------------------------------------------
+    def _solve(self, states: States, rhs: np.ndarray) -> np.ndarray:
+        a = self._scaled(self.jacobian(states))
+        rhs = rhs.copy()
+        for k, pair in enumerate(self.pairs):
+            if pair.kind == "P":
+                rhs[:, 2 * k] *= self.size
+        x = np.linalg.solve(a, -rhs[..., None])[..., 0]
+        x[:, 2::3] /= self.size
+        return x
+
+    def velocities(self, states: dict[str, LinkState]) -> None:
+        """Solve the group's ω and v_o at every position (in place in ``states``)."""
+        zero = {n: _with_rates(states[n], 1) for n in self.links}
+        x = self._solve({**states, **zero}, self.velocity_terms({**states, **zero}))
+        for name, c in self.col.items():
+            s = states[name]
+            states[name] = s.with_velocity(x[:, c + 2], s.origin, x[:, c:c + 2])
+
+    def accelerations(self, states: dict[str, LinkState]) -> None:
+        """Solve the group's ε and a_o at every position (in place in ``states``)."""
+        zero = {n: _with_rates(states[n], 2) for n in self.links}
+        x = self._solve({**states, **zero}, self.acceleration_terms({**states, **zero}))
+        for name, c in self.col.items():
+            s = states[name]
+            states[name] = s.with_acceleration(x[:, c + 2], s.origin, x[:, c:c + 2])
+
+    def newton(self, q: np.ndarray, known: States, *, tol: float = TOLERANCE, maxiter: int = MAX_ITER) -> NewtonResult:
+        """Newton's method from ``q`` (N, 3k) at every position at once."""
+        q = q.copy()
+        limit = tol * self.size
+        res = np.inf
+        for it in range(maxiter + 1):
+            st = self.states(q, known)
+            phi = self.residual(st)
+            for k, pair in enumerate(self.pairs):
+                if pair.kind == "P":
+                    phi[:, 2 * k] *= self.size
+            res = float(np.max(np.abs(phi))) if phi.size else 0.0
+            if not np.isfinite(res):
+                return NewtonResult(q, it, res, False)
+            if res <= limit:
+                return NewtonResult(q, it, res, True)
+            if it == maxiter:
+                break
+            a = self._scaled(self.jacobian(st))
+            try:
+                dx = np.linalg.solve(a, -phi[..., None])[..., 0]
+            except np.linalg.LinAlgError:
+                return NewtonResult(q, it, res, False)
+            dx[:, 2::3] /= self.size   # the scaled unknown is size·Δθ
+            q = q + dx
+        return NewtonResult(q, maxiter, res, False)
+
+
+def _with_rates(state: LinkState, order: int) -> LinkState:
+    """The state with its unknown rates of ``order`` (1: ω, v; 2: ε, a) set to zero."""
+    n = len(state.theta)
+    if order == 1:
+        return LinkState(state.theta, state.origin, np.zeros(n), np.zeros((n, 2)))
+    return LinkState(state.theta, state.origin, state.omega, state.v, np.zeros(n), np.zeros((n, 2)))
+
+
+def newton(eq: GroupEquations, q: np.ndarray, known: States, **kw) -> NewtonResult:
+    """Functional form of :meth:`GroupEquations.newton`."""
+    return eq.newton(q, known, **kw)

@@ -1,0 +1,248 @@
+"""Class III groups through Assur's special points: the graphic-analytical solution.
+
+A class III (order III) group is a base link b with three rods; each rod i joins b to a
+known link k_i. The rod's *axis* is the line along which it transmits the base link's
+velocity component:
+
+* rod R–R (outer pin A, inner pin B): the line AB;
+* rod P–R (slides on a guide of k_i, pinned to b at B): through B, normal to the guide;
+* rod R–P (pinned to k_i at A, slides along a line of b): through A, normal to that line.
+
+The special point S_ij is the intersection of axes i and j, taken as a point of b. Its
+velocity differs from that of k_i's point at S_ij only along e_i ⊥ axis i (and likewise for
+j), so it follows from two known directions (Cramer's rule):
+
+    v_S = v_S(k_i) + x_i·e_i = v_S(k_j) + x_j·e_j
+
+Two special points fix the base link (ω_b, and every point's velocity), then each rod.
+Accelerations follow in the same way, the normal and Coriolis terms being known from the
+velocities:
+
+    a_S = a_K(k_i) + c_i + y_i·e_i,   c_i = −ω_r²·(B − A) − ω_b²·(S − B)          (R–R)
+                                      c_i = 2ω_k·k×(v_B − v_B(k)) − ω_b²·(S − B)   (P–R)
+                                      c_i = −2ω_b·k×(v_A − v_A(b)) − ω_b²·(S − A)  (R–P)
+
+This solution shares no equations with :mod:`plans.kinematics.generic` (the Jacobian
+solve); the two are cross-checked in the tests. The three axes meeting in one point is the
+group's singular position (every special point coincides; the construction lines through
+the known images are parallel).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Mapping
+
+import numpy as np
+
+from ..model import Mechanism
+from ..structure import ComplexGroup, Rod
+from .state import J, LinkState, cross
+
+__all__ = ["Axis", "SpecialPoint", "TriadSolution", "axes", "special_points", "solve_triad", "condition",
+           "supports"]
+
+States = Mapping[str, LinkState]
+
+
+@dataclass(frozen=True)
+class Axis:
+    """A rod's axis at N positions: ``point`` X (N, 2) where the rod meets its known link
+    ``known`` (whose point there has a known velocity), unit ``direction`` d, and the inner
+    pin's world position ``pin`` (B for pinned rods, A's base point for R–P rods)."""
+
+    rod: Rod
+    known: str
+    point: np.ndarray
+    direction: np.ndarray
+    pin: np.ndarray
+
+    @property
+    def normal(self) -> np.ndarray:
+        """e = k × d: the direction of the special point's unknown velocity term."""
+        return J(self.direction)
+
+
+@dataclass(frozen=True)
+class SpecialPoint:
+    """S_ij, the meeting point of axes i and j, as a point of the base link: position (m),
+    sin of the angle between the axes, and (when solved) velocity and acceleration."""
+
+    name: str
+    rods: tuple[int, int]
+    position: np.ndarray
+    sin: np.ndarray
+    v: np.ndarray | None = None
+    a: np.ndarray | None = None
+
+
+@dataclass(frozen=True)
+class TriadSolution:
+    """The group's link states and its special points, solved through the special points."""
+
+    links: dict[str, LinkState]
+    points: tuple[SpecialPoint, ...]
+
+
+def supports(g: ComplexGroup) -> bool:
+    """True for class III groups whose rods all have a defined axis (no P–P rod)."""
+    return g.base is not None and all(r.form != "PP" for r in g.rods)
+
+
+def _unit(v: np.ndarray) -> np.ndarray:
+    return v / np.linalg.norm(v, axis=-1, keepdims=True)
+
+
+def axes(g: ComplexGroup, mech: Mechanism, states: States) -> tuple[Axis, ...]:
+    """The three rods' axes."""
+    out = []
+    for rod in g.rods:
+        known = rod.outer.b
+        if rod.form == "RR":
+            a = states[known].point(mech.links[known].local[rod.outer.point])
+            b = states[g.base].point(mech.links[g.base].local[rod.inner.point])
+            out.append(Axis(rod, known, a, _unit(b - a), b))
+        elif rod.form == "PR":
+            pr = rod.outer.prismatic
+            b = states[g.base].point(mech.links[g.base].local[rod.inner.point])
+            out.append(Axis(rod, known, b, J(states[known].direction(pr.direction)), b))
+        else:  # RP: pinned to the known link at A, sliding along a line of the base link
+            pr = rod.inner.prismatic
+            a = states[known].point(mech.links[known].local[rod.outer.point])
+            out.append(Axis(rod, known, a, J(states[pr.guide].direction(pr.direction)), a))
+    return tuple(out)
+
+
+def condition(g: ComplexGroup, mech: Mechanism, states: States) -> np.ndarray:
+    """The group's condition figure: det of the axes' normalised line coordinates
+    (d, (X − c) × d / size) over the product of the rows' norms — ±1 for well-spread axes,
+    0 when they meet in one point (c: the base link's first pin). Its sign changes across a
+    singular position."""
+    ax = axes(g, mech, states)
+    c = ax[0].pin
+    size = mech.size
+    rows = np.stack([np.column_stack([x.direction, cross(x.point - c, x.direction) / size]) for x in ax], axis=1)
+    return np.linalg.det(rows) / np.prod(np.linalg.norm(rows, axis=2), axis=1)
+
+
+def special_points(g: ComplexGroup, mech: Mechanism, states: States) -> tuple[SpecialPoint, ...]:
+    """S1 = axes 1∩2, S2 = axes 1∩3, S3 = axes 2∩3 (positions only; parallel axes give a
+    point far away and sin = 0 — such a point is never used)."""
+    ax = axes(g, mech, states)
+    out = []
+    for k, (i, j) in enumerate(((0, 1), (0, 2), (1, 2))):
+        x, s = _meet(ax[i].point, ax[i].direction, ax[j].point, ax[j].direction)
+        out.append(SpecialPoint(f"S{k + 1}", (i, j), x, s))
+    return tuple(out)
+
+
+def _meet(p1, u1, p2, u2) -> tuple[np.ndarray, np.ndarray]:
+    det = cross(u1, u2)
+    t = cross(p2 - p1, u2) / np.where(det == 0.0, 1.0, det)
+    return p1 + t[:, None] * u1, det
+
+
+def _pick(points: tuple[SpecialPoint, ...]) -> np.ndarray:
+    """Per position, the index (0–2) of the special point left out: the one whose axes are
+    nearest parallel."""
+    return np.argmin(np.stack([np.abs(p.sin) for p in points], axis=1), axis=1)
+
+
+def _two_directions(base_i: np.ndarray, e_i: np.ndarray, base_j: np.ndarray, e_j: np.ndarray) -> np.ndarray:
+    """The vector w = base_i + x·e_i = base_j + y·e_j (two known directions)."""
+    x = cross(base_j - base_i, e_j) / cross(e_i, e_j)
+    return base_i + x[:, None] * e_i
+
+
+def solve_triad(g: ComplexGroup, mech: Mechanism, states: States, order: int = 2) -> TriadSolution:
+    """Velocities (order 1) and accelerations (order 2) of the group's links through the
+    special points. ``states`` must hold the group's poses and the known links' motion."""
+    ax = axes(g, mech, states)
+    pts = special_points(g, mech, states)
+    skip = _pick(pts)
+    n = len(skip)
+    base = states[g.base]
+
+    def known_v(i: int, x: np.ndarray) -> np.ndarray:
+        return states[ax[i].known].velocity(x)
+
+    # velocities of the special points
+    sv = [_two_directions(known_v(i, p.position), ax[i].normal, known_v(j, p.position), ax[j].normal)
+          for p, (i, j) in ((p, p.rods) for p in pts)]
+    first = np.where(skip == 0, 1, 0)
+    second = np.where(skip == 2, 1, 2)
+    pos = np.stack([p.position for p in pts])          # (3, N, 2)
+    vel = np.stack(sv)
+    idx = np.arange(n)
+    p1, p2 = pos[first, idx], pos[second, idx]
+    v1, v2 = vel[first, idx], vel[second, idx]
+    d = p2 - p1
+    omega_b = cross(d, v2 - v1) / np.einsum("ij,ij->i", d, d)
+    b_state = base.with_velocity(omega_b, p1, v1)
+    links = {g.base: b_state}
+    for ax_i in ax:
+        links[ax_i.rod.link] = _rod_velocity(ax_i, g, mech, states, b_state)
+    points = [SpecialPoint(p.name, p.rods, p.position, p.sin, v=vv) for p, vv in zip(pts, sv)]
+    if order < 2:
+        return TriadSolution(links, tuple(points))
+    # accelerations of the special points
+    w_b = omega_b
+    sa = []
+    for p in pts:
+        i, j = p.rods
+        terms = [_known_acceleration(ax[r], g, mech, states, links, p.position) for r in (i, j)]
+        sa.append(_two_directions(terms[0], ax[i].normal, terms[1], ax[j].normal))
+    acc = np.stack(sa)
+    a1, a2 = acc[first, idx], acc[second, idx]
+    # a2 − a1 = ε k×d − ω² d
+    eps_b = cross(d, a2 - a1 + (w_b ** 2)[:, None] * d) / np.einsum("ij,ij->i", d, d)
+    b_state = links[g.base].with_acceleration(eps_b, p1, a1)
+    links[g.base] = b_state
+    for ax_i in ax:
+        links[ax_i.rod.link] = _rod_acceleration(ax_i, g, mech, states, links)
+    points = [SpecialPoint(p.name, p.rods, p.position, p.sin, v=p.v, a=aa) for p, aa in zip(points, sa)]
+    return TriadSolution(links, tuple(points))
+
+
+def _rod_velocity(ax: Axis, g: ComplexGroup, mech: Mechanism, states: States, b: LinkState) -> LinkState:
+    rod, k = ax.rod, states[ax.known]
+    r = states[rod.link]
+    if rod.form == "RR":
+        a, pin = ax.point, ax.pin
+        va, vb = k.velocity(a), b.velocity(pin)
+        d = pin - a
+        w = cross(d, vb - va) / np.einsum("ij,ij->i", d, d)
+        return r.with_velocity(w, a, va)
+    if rod.form == "PR":                      # turns with the guide link, pinned to b at B
+        return r.with_velocity(k.omega, ax.pin, b.velocity(ax.pin))
+    return r.with_velocity(b.omega, ax.point, k.velocity(ax.point))   # RP: turns with b, pinned at A
+
+
+def _known_acceleration(ax: Axis, g: ComplexGroup, mech: Mechanism, states: States,
+                        links: Mapping[str, LinkState], s: np.ndarray) -> np.ndarray:
+    """a_K(k_i) + c_i: the known part of the special point's acceleration along rod i."""
+    rod, k, b = ax.rod, states[ax.known], links[g.base]
+    w_b2 = (b.omega ** 2)[:, None]
+    if rod.form == "RR":
+        w_r2 = (links[rod.link].omega ** 2)[:, None]
+        return k.acceleration(ax.point) - w_r2 * (ax.pin - ax.point) - w_b2 * (s - ax.pin)
+    if rod.form == "PR":
+        v_rel = b.velocity(ax.pin) - k.velocity(ax.pin)
+        return k.acceleration(ax.pin) + 2.0 * k.omega[:, None] * J(v_rel) - w_b2 * (s - ax.pin)
+    v_rel = k.velocity(ax.point) - b.velocity(ax.point)
+    return k.acceleration(ax.point) - 2.0 * b.omega[:, None] * J(v_rel) - w_b2 * (s - ax.point)
+
+
+def _rod_acceleration(ax: Axis, g: ComplexGroup, mech: Mechanism, states: States,
+                      links: Mapping[str, LinkState]) -> LinkState:
+    rod, k, b = ax.rod, states[ax.known], links[g.base]
+    r = links[rod.link]
+    if rod.form == "RR":
+        a, pin = ax.point, ax.pin
+        aa, ab = k.acceleration(a), b.acceleration(pin)
+        d = pin - a
+        e = cross(d, ab - aa + (r.omega ** 2)[:, None] * d) / np.einsum("ij,ij->i", d, d)
+        return r.with_acceleration(e, a, aa)
+    if rod.form == "PR":
+        return r.with_acceleration(k.epsilon, ax.pin, b.acceleration(ax.pin))
+    return r.with_acceleration(b.epsilon, ax.point, k.acceleration(ax.point))
