@@ -18,10 +18,11 @@ from .constructions import Scales, acceleration_plan, choose_scales, scheme, vel
 from .constructions.scales import extent_of
 from .drawing import Style, draw_plan, draw_scheme
 from .errors import PlansError
-from .kinematics import WARN_SIN, Motion, analyse
+from .kinematics import WARN_SIN, Motion, analyse, special
+from .kinematics.centres import centres
 from .model import build_mechanism
 from .scene import Scene, read_scene
-from .structure import analyse_structure
+from .structure import ComplexGroup, analyse_structure
 
 __all__ = ["Rendered", "render_scene", "report", "write_files", "solve_scene"]
 
@@ -41,7 +42,7 @@ def solve_scene(scene: Scene) -> Motion:
     """Solve a scene to the order its drawings need (scheme only: positions)."""
     mech = build_mechanism(scene)
     structure = analyse_structure(mech)
-    order = 2 if "acceleration" in scene.draw else 1 if "velocity" in scene.draw else 0
+    order = 2 if "acceleration" in scene.draw else 1 if {"velocity", "centres"} & set(scene.draw) else 0
     return analyse(mech, structure, order=order)
 
 
@@ -76,11 +77,15 @@ def _position_label(motion: Motion, i: int) -> str:
         f"s = {v:g} m, v = {d.speed:g} m/s, a = {d.rate:g} m/s²"
 
 
-def report(scene: Scene, motion: Motion, scales: Scales) -> dict:
-    """The JSON report: structure and, per position, points, links, scales (SI)."""
+def report(scene: Scene, motion: Motion, scales: Scales, solutions: dict | None = None) -> dict:
+    """The JSON report: structure and, per position, points, links, scales, conditioning,
+    instantaneous centres and the special points of class III groups (SI)."""
     mech = motion.mechanism
     key = "angle" if mech.drive.kind == "rotary" else "displacement"
     positions = []
+    ic = centres(motion) if motion.order >= 1 else None
+    solutions = triads(motion) if solutions is None else solutions
+    special_pts = {g.name: triad.points for g, triad in solutions.items()}
     r = {p: motion.position(p) for p in mech.sketch}
     v = {p: motion.velocity(p) for p in mech.sketch} if motion.order >= 1 else {}
     a = {p: motion.acceleration(p) for p in mech.sketch} if motion.order >= 2 else {}
@@ -102,10 +107,42 @@ def report(scene: Scene, motion: Motion, scales: Scales) -> dict:
         pos = {key: float(value), "points": points, "links": links, "scales": scales.as_dict()}
         if motion.sines:
             pos["conditioning"] = {g: float(s[i]) for g, s in motion.sines.items()}
+        if ic is not None:
+            pos["centres"] = {name: _xy(c.at(i)) for name, c in ic.absolute.items()}
+            pos["relative_centres"] = {f"{a}-{b}": _xy(c.at(i)) for (a, b), c in ic.relative.items()}
+        if special_pts:
+            pos["special_points"] = {g: {p.name: _special(p, i) for p in pts} for g, pts in special_pts.items()}
         if not links:
             del pos["links"]
         positions.append(pos)
     return {"title": scene.title, "structure": motion.structure.as_dict(), "positions": positions}
+
+
+def _xy(p) -> list[float] | None:
+    return None if p is None else [float(p[0]), float(p[1])]
+
+
+def _special(p, i: int) -> dict:
+    """A special point at position i: r (m), the sine between its axes, v and a when known;
+    r is null when the axes are parallel (the point is at infinity)."""
+    finite = abs(float(p.sin[i])) > 1e-12
+    out = {"r": _xy(p.position[i]) if finite else None, "sin": float(p.sin[i])}
+    for key, vec in (("v", p.v), ("a", p.a)):
+        if vec is not None:
+            out[key] = _xy(vec[i]) if finite else None
+    return out
+
+
+def triads(motion: Motion) -> dict:
+    """Every class III group solved a second, independent way, through its special points
+    (group → :class:`~plans.kinematics.special.TriadSolution`); empty for other mechanisms."""
+    out = {}
+    for g in motion.structure.groups:
+        if isinstance(g, ComplexGroup) and special.supports(g):
+            out[g] = special.solve_triad(g, motion.mechanism, motion.links, order=motion.order) \
+                if motion.order >= 1 else special.TriadSolution({}, special.special_points(g, motion.mechanism,
+                                                                                           motion.links))
+    return out
 
 
 def render_scene(path: str | Path, style: Style = Style()) -> Rendered:
@@ -117,6 +154,12 @@ def render_scene(path: str | Path, style: Style = Style()) -> Rendered:
     except PlansError as exc:
         raise exc.in_file(str(path)) if hasattr(exc, "in_file") else exc
     scales = _scales(scene, motion)
+    solutions = triads(motion)
+    for g, triad in solutions.items():
+        worst = _disagreement(motion, triad)
+        if worst > CROSS_CHECK_RTOL:
+            raise PlansError(f"{path}: group {g.name}: the special-point solution and the Jacobian solution differ "
+                             f"by {worst:.2e} (relative) — please report this scene")
     files: dict[str, str] = {}
     warnings = []
     formula = motion.structure.formula
@@ -142,8 +185,31 @@ def render_scene(path: str | Path, style: Style = Style()) -> Rendered:
                                  f"{failures[0]} (please report this scene)")
             files[f"{stem}-{kind}{sfx}.svg"] = draw_plan(plan, title=f"{scene.title}: {kind} plan",
                                                          subtitle=label, ident=f"{kind}{sfx or ''}", style=style)
-    files[f"{stem}.json"] = json.dumps(report(scene, motion, scales), indent=1, ensure_ascii=False) + "\n"
+    files[f"{stem}.json"] = json.dumps(report(scene, motion, scales, solutions), indent=1, ensure_ascii=False) + "\n"
     return Rendered(stem, files, motion, scales, tuple(warnings))
+
+
+#: Largest relative difference allowed between the two solutions of a class III group.
+CROSS_CHECK_RTOL = 1e-9
+
+
+def _disagreement(motion: Motion, triad) -> float:
+    """Largest difference between the special-point and the Jacobian solutions of a group's
+    links (ω·size and v of every point; ε·size and a), relative to the largest such value."""
+    worst = 0.0
+    mech = motion.mechanism
+    for link, s in triad.links.items():
+        ref = motion.links[link]
+        pts = [ref.point(x) for x in mech.links[link].local.values()]
+        kinds = [[(ref.omega[:, None] * mech.size, s.omega[:, None] * mech.size)]
+                 + [(ref.velocity(x), s.velocity(x)) for x in pts]]
+        if motion.order >= 2:
+            kinds.append([(ref.epsilon[:, None] * mech.size, s.epsilon[:, None] * mech.size)]
+                         + [(ref.acceleration(x), s.acceleration(x)) for x in pts])
+        for pairs in kinds:
+            scale = max(float(np.max(np.abs(a))) for a, _ in pairs) or 1.0
+            worst = max(worst, max(float(np.max(np.abs(a - b))) for a, b in pairs) / scale)
+    return worst
 
 
 def _similarity(motion: Motion, plan, i: int, tol: float = 1e-9) -> list[str]:

@@ -19,7 +19,9 @@ from .errors import SceneError
 __all__ = ["Scene", "Slider", "Drive", "read_scene", "parse_scene", "FRAME", "DRAWABLE"]
 
 FRAME = "0"
-DRAWABLE = ("scheme", "velocity", "acceleration")
+DRAWABLE = ("scheme", "velocity", "acceleration", "centres")
+#: What a scene draws when [plans] says nothing.
+DEFAULT_DRAW = ("scheme", "velocity", "acceleration")
 _TOP_KEYS = {"title", "description", "points", "links", "sliders", "drive", "lengths", "plans", "scales"}
 
 
@@ -73,7 +75,7 @@ class Scene:
     sliders: tuple[Slider, ...]
     drive: Drive
     lengths: Mapping[frozenset[str], float] = field(default_factory=dict)
-    draw: tuple[str, ...] = DRAWABLE
+    draw: tuple[str, ...] = DEFAULT_DRAW
     scales: Mapping[str, float] = field(default_factory=dict)
     description: str = ""
     file: str | None = None
@@ -298,7 +300,7 @@ def _draw(table: Mapping[str, Any]) -> tuple[str, ...]:
     extra = sorted(set(table) - {"draw"})
     if extra:
         raise SceneError(f"unknown key {extra[0]!r}; [plans] has draw", key=f"plans.{extra[0]}")
-    draw = table.get("draw", list(DRAWABLE))
+    draw = table.get("draw", list(DEFAULT_DRAW))
     if not isinstance(draw, list) or not draw:
         raise SceneError(f"draw is a non-empty list of {', '.join(DRAWABLE)}", key="plans.draw")
     for item in draw:

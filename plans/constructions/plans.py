@@ -21,9 +21,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..kinematics import Motion
+from ..kinematics import Motion, special
 from ..kinematics.state import J
 from ..scene import FRAME
+from ..structure import ComplexGroup
 
 __all__ = ["PlanPoint", "PlanVector", "ConstructionLine", "Plan", "Relation", "relations",
            "velocity_plan", "acceleration_plan", "EXTENSION_MM"]
@@ -112,8 +113,14 @@ def relations(motion: Motion) -> tuple[Relation, ...]:
         out.append(Relation("rigid", d.link, d.tip, d.pivot, group="I"))
     else:
         out.append(Relation("slide", d.link, d.guide.label, "", group="I", other=FRAME))
+    constructed: set[tuple[str, str]] = set()
     for g in structure.groups:
         name = g.name
+        if isinstance(g, ComplexGroup):
+            out += _complex_relations(g)
+            if special.supports(g):
+                constructed |= {(g.base, p.point) for p in g.inner if p.kind == "R"}
+            continue
         for joint in (g.d, g.e, g.f):
             if joint.kind == "P":
                 pr = joint.prismatic
@@ -130,9 +137,30 @@ def relations(motion: Motion) -> tuple[Relation, ...]:
         joints = [p for p in pts if len([l for l in mech.links.values() if p in l.local]) > 1]
         bases = joints[:2] if joints else list(pts[:1])
         for p in pts:
-            if p not in bases:  # similarity images, relative to the link's moving base points
+            if p not in bases and (link, p) not in constructed:  # similarity images, relative to the link's moving base points
                 out += [Relation("rigid", link, p, b, group=link, pair=False) for b in bases if b not in fixed]
     return tuple(out)
+
+
+def _complex_relations(g: ComplexGroup) -> list[Relation]:
+    """Class III: each rod's relative motion (its pin relative to its outer pair); the base
+    link's pins are built from the special points at each position (:func:`_special`).
+    Class IV: every link's relative velocities between its pairs, as vectors only — the
+    group's plan is not constructible with a ruler from known images alone."""
+    out = []
+    for pair in g.pairs:
+        if pair.kind == "P":
+            pr = pair.prismatic
+            out.append(Relation("slide", pr.slider, pr.label, "", group=g.name, other=pr.guide))
+    if g.base is not None:
+        for rod in g.rods:
+            if rod.form == "RR":
+                out.append(Relation("rigid", rod.link, rod.inner.point, rod.outer.point, group=g.name))
+        return out
+    for link in g.links:
+        pins = [p.point for p in g.pairs if p.kind == "R" and link in (p.a, p.b)]
+        out += [Relation("rigid", link, x, pins[0], group=g.name, pair=False) for x in pins[1:]]
+    return out
 
 
 def _label(motion: Motion, point: str, link: str) -> str:
@@ -146,24 +174,30 @@ class _Builder:
         self.points: dict[str, tuple[float, float]] = {}
         self.vectors: list[PlanVector] = []
         self.lines: list[ConstructionLine] = []
+        self.extra: dict[str, np.ndarray] = {}   # constructed points (special points S1…): world position
 
     def world(self, point: str) -> np.ndarray:
+        if point in self.extra:
+            return self.extra[point]
         return self.motion.position(point)[self.i]
+
+    def label(self, point: str, link: str) -> str:
+        return point if point in self.extra else _label(self.motion, point, link)
 
     def quantity(self, point: str, link: str) -> np.ndarray:
         """v or a (SI) of the point of ``link`` now at ``point``."""
         state = self.motion.links[link].take(np.array([self.i]))
-        x = self.motion.position(point)[self.i: self.i + 1]
+        x = self.world(point)[None, :]
         vec = state.velocity(x) if self.kind == "velocity" else state.acceleration(x)
         return vec[0]
 
     def quantity_v(self, point: str, link: str) -> np.ndarray:
         """v (m/s) of the point of ``link`` now at ``point``."""
         state = self.motion.links[link].take(np.array([self.i]))
-        return state.velocity(self.motion.position(point)[self.i: self.i + 1])[0]
+        return state.velocity(self.world(point)[None, :])[0]
 
     def image(self, point: str, link: str) -> tuple[float, float]:
-        label = _label(self.motion, point, link).lower()
+        label = self.label(point, link).lower()
         xy = tuple(float(c) for c in self.quantity(point, link) / self.mu)
         self.points.setdefault(label, xy)
         return self.points[label]
@@ -202,6 +236,9 @@ def _plan(motion: Motion, i: int, mu: float, kind: str) -> Plan:
             _rigid(b, rel, sym)
         else:
             _slide(b, rel, sym, pole)
+    for g in motion.structure.groups:
+        if isinstance(g, ComplexGroup) and special.supports(g):
+            _special(b, g, sym)
     for name in mech.sketch:  # absolute vectors of every moving scene point
         link = motion.carrier(name)
         if link == FRAME:
@@ -217,7 +254,7 @@ def _plan(motion: Motion, i: int, mu: float, kind: str) -> Plan:
 
 def _rigid(b: _Builder, rel: Relation, sym: str) -> None:
     motion, link = b.motion, rel.link
-    xl, yl = _label(motion, rel.x, link), _label(motion, rel.y, link)
+    xl, yl = b.label(rel.x, link), b.label(rel.y, link)
     tail, head = b.image(rel.y, link), b.image(rel.x, link)
     r = b.world(rel.x) - b.world(rel.y)   # the link's segment Y → X, m
     state = motion.links[link]
@@ -268,3 +305,53 @@ def _slide(b: _Builder, rel: Relation, sym: str, pole) -> None:
     b.vector(f"{q}:cor", tail, k_xy, float(np.linalg.norm(coriolis)), "coriolis")
     b.vector(f"{q}:r", k_xy, head, float(np.linalg.norm(a_rel)), "sliding")
     b.line(k_xy, u, [head], f"{q}:r", rel.group)
+
+
+def _special(b: _Builder, g: ComplexGroup, sym: str) -> None:
+    """A class III group through its special points: each of the two special points used
+    (S = meeting point of two rods' axes, a point of the base link) is found from the known
+    images of the rods' outer pairs along the two directions ⊥ the axes; the base link's
+    pins are then found from the two special points (two lines ⊥ S–pin meeting at the pin's
+    image)."""
+    motion, i = b.motion, b.i
+    mech = motion.mechanism
+    states = {name: s.take(np.array([i])) for name, s in motion.links.items()}
+    ax = special.axes(g, mech, states)
+    pts = special.special_points(g, mech, states)
+    skip = int(special.pick(pts)[0])
+    used = [p for k, p in enumerate(pts) if k != skip]
+    for p in used:
+        b.extra[p.name] = p.position[0]
+    for p in used:
+        s_img = b.image(p.name, g.base)
+        for r in p.rods:
+            rod = ax[r].rod
+            pin = rod.inner.point if rod.form == "PR" else rod.outer.point
+            k_lab = b.label(pin, ax[r].known)
+            k_img = b.image(pin, ax[r].known)
+            e = ax[r].normal[0]
+            q = f"{sym}:{p.name}/{k_lab}"
+            total = b.quantity(p.name, g.base) - b.quantity(pin, ax[r].known)
+            if sym == "v":
+                b.vector(q, k_img, s_img, float(np.linalg.norm(total)), "relative")
+                b.line(k_img, e, [s_img], q, f"{g.name}:{p.name}")
+                continue
+            known = special.known_acceleration(ax[r], g, mech, states, states, p.position)[0]
+            c = known - b.quantity(pin, ax[r].known)      # normal (and Coriolis) components, known
+            n_label = f"n_{p.name}{k_lab}"
+            n_xy = tuple(float(v) for v in np.add(k_img, c / b.mu))
+            b.points[n_label] = n_xy
+            b.vector(f"{q}:n", k_img, n_xy, float(np.linalg.norm(c)), "normal")
+            b.vector(f"{q}:t", n_xy, s_img, float(np.linalg.norm(total - c)), "tangential")
+            b.line(n_xy, e, [s_img], f"{q}:t", f"{g.name}:{p.name}")
+    # pins of the two rods not common to both special points: from the special points; the
+    # common rod's pin is on the line through both, so it comes from the other two pins
+    common = (set(used[0].rods) & set(used[1].rods)).pop()
+    others = [ax[r].rod.inner.point for r in range(3) if r != common and ax[r].rod.inner.kind == "R"]
+    for pin in others:
+        for p in used:
+            _rigid(b, Relation("rigid", g.base, pin, p.name, group=f"{g.name}:{pin}"), sym)
+    last = ax[common].rod.inner
+    if last.kind == "R" and len(others) == 2:
+        for pin in others:
+            _rigid(b, Relation("rigid", g.base, last.point, pin, group=f"{g.name}:{last.point}"), sym)

@@ -40,7 +40,7 @@ from ..structure import ComplexGroup, Rod
 from .state import J, LinkState, cross
 
 __all__ = ["Axis", "SpecialPoint", "TriadSolution", "axes", "special_points", "solve_triad", "condition",
-           "supports"]
+           "supports", "pick", "known_acceleration"]
 
 States = Mapping[str, LinkState]
 
@@ -142,7 +142,7 @@ def _meet(p1, u1, p2, u2) -> tuple[np.ndarray, np.ndarray]:
     return p1 + t[:, None] * u1, det
 
 
-def _pick(points: tuple[SpecialPoint, ...]) -> np.ndarray:
+def pick(points: tuple[SpecialPoint, ...]) -> np.ndarray:
     """Per position, the index (0–2) of the special point left out: the one whose axes are
     nearest parallel."""
     return np.argmin(np.stack([np.abs(p.sin) for p in points], axis=1), axis=1)
@@ -159,7 +159,7 @@ def solve_triad(g: ComplexGroup, mech: Mechanism, states: States, order: int = 2
     special points. ``states`` must hold the group's poses and the known links' motion."""
     ax = axes(g, mech, states)
     pts = special_points(g, mech, states)
-    skip = _pick(pts)
+    skip = pick(pts)
     n = len(skip)
     base = states[g.base]
 
@@ -190,7 +190,7 @@ def solve_triad(g: ComplexGroup, mech: Mechanism, states: States, order: int = 2
     sa = []
     for p in pts:
         i, j = p.rods
-        terms = [_known_acceleration(ax[r], g, mech, states, links, p.position) for r in (i, j)]
+        terms = [known_acceleration(ax[r], g, mech, states, links, p.position) for r in (i, j)]
         sa.append(_two_directions(terms[0], ax[i].normal, terms[1], ax[j].normal))
     acc = np.stack(sa)
     a1, a2 = acc[first, idx], acc[second, idx]
@@ -218,7 +218,7 @@ def _rod_velocity(ax: Axis, g: ComplexGroup, mech: Mechanism, states: States, b:
     return r.with_velocity(b.omega, ax.point, k.velocity(ax.point))   # RP: turns with b, pinned at A
 
 
-def _known_acceleration(ax: Axis, g: ComplexGroup, mech: Mechanism, states: States,
+def known_acceleration(ax: Axis, g: ComplexGroup, mech: Mechanism, states: States,
                         links: Mapping[str, LinkState], s: np.ndarray) -> np.ndarray:
     """a_K(k_i) + c_i: the known part of the special point's acceleration along rod i."""
     rod, k, b = ax.rod, states[ax.known], links[g.base]

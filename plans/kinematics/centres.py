@@ -1,0 +1,86 @@
+"""Instantaneous centres of velocity: absolute (each link relative to the frame) and
+relative (each pair of links), from the solved motion.
+
+The centre P_ij of links i and j is the point whose velocity is the same in both:
+
+    v_i(X) = v_j(X)  ⇔  (ω_i − ω_j)·k × X = −w,  w = (v_oi − ω_i k×o_i) − (v_oj − ω_j k×o_j)
+    ⇒  X = k × w / (ω_i − ω_j)
+
+With j the frame this is the absolute centre P_i = o_i + k × v_oi / ω_i. When ω_i = ω_j
+(to a relative ``INFINITY_RTOL`` of the link's velocities over the mechanism's size) the
+centre is at infinity: it is reported as ``None`` and its direction — normal to the common
+relative velocity — is given instead; nothing is divided by zero. By Aronhold–Kennedy's
+theorem P_ij, P_jk and P_ik lie on one line.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from itertools import combinations
+
+import numpy as np
+
+from ..scene import FRAME
+from .state import J, Motion
+
+__all__ = ["Centre", "Centres", "centres", "INFINITY_RTOL"]
+
+#: |ω_i − ω_j|·size ≤ INFINITY_RTOL·|relative velocity| puts a centre at infinity (it would
+#: lie more than 1e9 mechanism sizes away).
+INFINITY_RTOL = 1e-9
+
+
+@dataclass(frozen=True)
+class Centre:
+    """P_ij at N positions: ``point`` (N, 2) in metres, NaN where at infinity;
+    ``direction`` (N, 2), a unit vector towards the centre at infinity (zero where finite,
+    or where the two links do not move relative to each other at all)."""
+
+    links: tuple[str, str]
+    point: np.ndarray
+    direction: np.ndarray
+
+    @property
+    def name(self) -> str:
+        i, j = self.links
+        return f"P{i}" if j == FRAME else f"P{i}{j}" if len(i + j) == 2 else f"P{i},{j}"
+
+    def at(self, n: int) -> tuple[float, float] | None:
+        """The centre at position n (m), or None when it is at infinity."""
+        p = self.point[n]
+        return None if np.isnan(p[0]) else (float(p[0]), float(p[1]))
+
+
+@dataclass(frozen=True)
+class Centres:
+    """Absolute centres (moving link → Centre) and relative ones ((i, j) → Centre)."""
+
+    absolute: dict[str, Centre]
+    relative: dict[tuple[str, str], Centre]
+
+
+def _centre(motion: Motion, i: str, j: str) -> Centre:
+    si, sj = motion.links[i], motion.links[j]
+    size = motion.mechanism.size
+    w = (si.v - si.omega[:, None] * J(si.origin)) - (sj.v - sj.omega[:, None] * J(sj.origin))
+    dw = si.omega - sj.omega
+    # the relative velocity field at a point of the link, for the infinity test
+    x = si.origin
+    v_rel = si.velocity(x) - sj.velocity(x)
+    speed = np.maximum(np.linalg.norm(v_rel, axis=1), np.abs(dw) * size)
+    finite = np.abs(dw) * size > INFINITY_RTOL * speed
+    safe = np.where(finite, dw, 1.0)
+    point = np.where(finite[:, None], J(w) / safe[:, None], np.nan)
+    norm = np.linalg.norm(v_rel, axis=1)
+    direction = np.where((~finite & (norm > 0.0))[:, None], J(v_rel) / np.where(norm > 0.0, norm, 1.0)[:, None], 0.0)
+    return Centre((i, j), point, direction)
+
+
+def centres(motion: Motion) -> Centres:
+    """Every absolute and relative centre of the mechanism (needs velocities)."""
+    if motion.order < 1:
+        raise ValueError("instantaneous centres need the velocities: solve with order >= 1")
+    moving = motion.mechanism.moving
+    absolute = {name: _centre(motion, name, FRAME) for name in moving}
+    relative = {(a, b): _centre(motion, a, b) for a, b in combinations(moving, 2)}
+    return Centres(absolute, relative)
