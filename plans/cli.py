@@ -91,12 +91,20 @@ def main(argv: Sequence[str] | None = None) -> int:
     d = sub.add_parser("demo", help="render the bundled textbook examples")
     d.add_argument("-o", "--output", default="output", metavar="DIR")
     d.add_argument("-q", "--quiet", action="store_true")
+    b = sub.add_parser("bench", help="measure what accuracy costs in time: tables, charts and bench.json")
+    b.add_argument("-o", "--output", default="output/bench", metavar="DIR")
+    b.add_argument("--quick", action="store_true", help="a few small cases only (seconds; for tests)")
     args = parser.parse_args(argv)
     try:
         if args.command == "render":
             return _render(args.scenes, args.output, args.quiet)
         if args.command == "demo":
             return _render([str(p) for p in _examples()], args.output, args.quiet)
+        if args.command == "bench":
+            from .bench import run   # imported here: the other commands need none of it
+
+            run(args.output, quick=args.quick)
+            return 0
         return _check(args.svgs)
     except PlansError as exc:
         print(f"plans: error: {exc}", file=sys.stderr)

@@ -16,7 +16,8 @@ import numpy as np
 from .checking import check_plan, similarity_ratio
 from .constructions import Scales, acceleration_plan, choose_scales, scheme, velocity_plan
 from .constructions.scales import extent_of
-from .drawing import Style, draw_plan, draw_scheme
+from .constructions.centres import centres_sheet
+from .drawing import Style, draw_centres, draw_plan, draw_scheme
 from .errors import PlansError
 from .kinematics import WARN_SIN, Motion, analyse, special
 from .kinematics.centres import centres
@@ -162,6 +163,7 @@ def render_scene(path: str | Path, style: Style = Style()) -> Rendered:
                              f"by {worst:.2e} (relative) — please report this scene")
     files: dict[str, str] = {}
     warnings = []
+    ic = None
     formula = motion.structure.formula
     for i in range(len(motion)):
         sfx = _suffix(motion, i)
@@ -174,6 +176,12 @@ def render_scene(path: str | Path, style: Style = Style()) -> Rendered:
             sch = scheme(motion, i, scales.mu_l)
             files[f"{stem}-scheme{sfx}.svg"] = draw_scheme(sch, title=scene.title, subtitle=f"Scheme, {label}",
                                                            formula=formula, ident=f"scheme{sfx or ''}", style=style)
+        if "centres" in scene.draw:
+            ic = ic or centres(motion)
+            sheet = centres_sheet(motion, ic, i)
+            files[f"{stem}-centres{sfx}.svg"] = draw_centres(
+                sheet, title=f"{scene.title}: instantaneous centres", subtitle=label, formula=formula,
+                ident=f"centres{sfx or ''}", style=style)
         for kind, builder, mu in (("velocity", velocity_plan, scales.mu_v), ("acceleration", acceleration_plan,
                                                                               scales.mu_a)):
             if kind not in scene.draw:

@@ -16,6 +16,7 @@ from typing import Iterable, Sequence
 import numpy as np
 import svgwrite
 
+from ..constructions.centres import CentresSheet
 from ..constructions.plans import Plan
 from ..constructions.scheme import BLOCK_MM, Scheme
 from .style import Style
@@ -185,12 +186,73 @@ def _hatch(paper: _Paper, a, b, side: float, style: Style) -> list[tuple[tuple[f
     return [(tuple(a + u * (t + 0.5) * L / count), tuple(a + u * (t + 0.5) * L / count + d)) for t in range(count)]
 
 
+def _scheme_coords(sch: Scheme) -> list:
+    return list(sch.points.values()) + [g.start for g in sch.guides] + [g.end for g in sch.guides]
+
+
 def draw_scheme(sch: Scheme, *, title: str, subtitle: str, formula: str, ident: str, style: Style = Style()) -> str:
     """SVG text of the kinematic scheme."""
-    coords = list(sch.points.values()) + [g.start for g in sch.guides] + [g.end for g in sch.guides]
+    paper = _Paper(_bbox(_scheme_coords(sch)), style, width_min=max(140.0, _title_width(title, style)))
+    dwg = _drawing(paper, ident)
+    dwg.add(_header(dwg, paper, title, subtitle, ident))
+    _scheme_layers(dwg, paper, sch, ident, style)
+    dwg.add(_legend(dwg, paper, ident, (f"μl = {sch.mu_l:g} m/mm", style.text), (formula, style.text)))
+    return dwg.tostring()
+
+
+def draw_centres(sheet: CentresSheet, *, title: str, subtitle: str, formula: str, ident: str,
+                 style: Style = Style()) -> str:
+    """SVG text of the instantaneous-centres sheet: the scheme, the centres, the measured
+    segments centre → point (tagged, length × μl = distance in m) and the construction lines."""
+    marks = [m.xy for m in sheet.marks if m.xy is not None]
+    tips = [tuple(np.add(m.anchor, np.multiply(m.direction, 18.0))) for m in sheet.marks if m.xy is None]
+    coords = _scheme_coords(sheet.scheme) + marks + tips + [xy for _, xy in sheet.special] + \
+        [p for line in sheet.lines for p in line]
     paper = _Paper(_bbox(coords), style, width_min=max(140.0, _title_width(title, style)))
     dwg = _drawing(paper, ident)
     dwg.add(_header(dwg, paper, title, subtitle, ident))
+    cons = dwg.g(id=f"{ident}-construction", stroke=style.construction_colour, stroke_width=fmt(style.thin, 3),
+                 stroke_dasharray=style.dash, fill="none")
+    for k, (a, b) in enumerate(sheet.lines):
+        cons.add(dwg.line(start=paper.xy(a), end=paper.xy(b), id=f"{ident}-cl{k}"))
+    dwg.add(cons)
+    _scheme_layers(dwg, paper, sheet.scheme, ident, style)
+    g = dwg.g(id=f"{ident}-centres", stroke=style.component_colour, stroke_width=fmt(style.thin, 3),
+              stroke_dasharray=style.dash, fill="none")
+    g.attribs["data-mu"] = repr(sheet.mu_l)
+    g.attribs["data-plan"] = "centres"
+    for k, r in enumerate(sheet.rays):
+        el = dwg.line(start=paper.xy(r.start), end=paper.xy(r.end), id=f"{ident}-r{k}")
+        el.attribs["data-quantity"] = r.quantity
+        el.attribs["data-value"] = repr(r.value)
+        g.add(el)
+    dwg.add(g)
+    labels = dwg.g(id=f"{ident}-marks", fill=style.component_colour)
+    for k, m in enumerate(sheet.marks):
+        if m.xy is not None:
+            labels.add(dwg.circle(center=paper.xy(m.xy), r=fmt(0.9, 2), id=f"{ident}-c{k}"))
+            labels.add(_text(dwg, paper, (m.xy[0] + 1.8, m.xy[1] + 1.6), m.name, size=style.text,
+                             ident=f"{ident}-cl{k}t"))
+            continue
+        tip = tuple(np.add(m.anchor, np.multiply(m.direction, 18.0)))
+        labels.add(dwg.line(start=paper.xy(m.anchor), end=paper.xy(tip), stroke=style.component_colour,
+                            stroke_width=fmt(style.thin, 3), id=f"{ident}-cd{k}"))
+        labels.add(dwg.path(d=_arrow_head(paper, m.anchor, tip), stroke="none", id=f"{ident}-ch{k}"))
+        note = f"{m.name} at ∞" if m.infinite else f"{m.name} (off the sheet)"
+        labels.add(_text(dwg, paper, (tip[0] + 1.5, tip[1] + 1.0), note, size=style.small_text,
+                         ident=f"{ident}-ct{k}"))
+    for k, (name, xy) in enumerate(sheet.special):
+        labels.add(dwg.circle(center=paper.xy(xy), r=fmt(0.7, 2), fill="#fff", stroke=style.component_colour,
+                              stroke_width=fmt(style.thin, 3), id=f"{ident}-s{k}"))
+        labels.add(_text(dwg, paper, (xy[0] + 1.8, xy[1] - 3.2), name, size=style.small_text,
+                         ident=f"{ident}-st{k}"))
+    dwg.add(labels)
+    dwg.add(_legend(dwg, paper, ident, (f"μl = {sheet.mu_l:g} m/mm; Pj = centre of link j, dashed Pj–X ⊥ v of X",
+                                        style.text), (formula, style.text)))
+    return dwg.tostring()
+
+
+def _scheme_layers(dwg: svgwrite.Drawing, paper: _Paper, sch: Scheme, ident: str, style: Style) -> None:
     g = dwg.g(id=f"{ident}-scheme", stroke=style.colour, fill="none", stroke_linecap="round")
     g.attribs["data-mu"] = repr(sch.mu_l)
     g.attribs["data-plan"] = "scheme"
@@ -269,5 +331,3 @@ def draw_scheme(sch: Scheme, *, title: str, subtitle: str, formula: str, ident: 
         labels.add(_text(dwg, paper, (mid[0], mid[1]), name, size=style.small_text, italic=False,
                          ident=f"{ident}-n{name}"))
     dwg.add(labels)
-    dwg.add(_legend(dwg, paper, ident, (f"μl = {sch.mu_l:g} m/mm", style.text), (formula, style.text)))
-    return dwg.tostring()

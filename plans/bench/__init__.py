@@ -1,0 +1,148 @@
+"""``plans bench``: what accuracy costs in time, measured in one run.
+
+Sections (see :mod:`plans.bench.sections`): drawing precision, solver tolerance, cycle
+resolution, throughput (vectorised vs per-angle loop, plans rendered per second) and a
+comparison with the peer library pylinkage (skipped when it is not installed). Each section
+prints a table; :func:`run` also writes ``bench.json`` (every figure, the machine, the run
+time) and one SVG chart per figure into the output folder.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import platform
+import sys
+import time
+from pathlib import Path
+from typing import Any, TextIO
+
+import numpy as np
+
+from .chart import Chart, Series, draw_chart
+from .sections import FULL, QUICK, SECTIONS, THROUGHPUT_TARGET, Column, Config, Section
+
+__all__ = ["run", "machine", "format_table", "Chart", "Series", "Column", "Config", "Section", "FULL", "QUICK"]
+
+
+def machine() -> dict[str, Any]:
+    """Cores, CPU model (from /proc/cpuinfo where there is one), Python and NumPy versions."""
+    cpu = platform.processor() or platform.machine()
+    try:
+        with open("/proc/cpuinfo", encoding="utf-8") as fh:
+            cpu = next((line.split(":", 1)[1].strip() for line in fh if line.startswith("model name")), cpu)
+    except OSError:
+        pass
+    return {"cores": os.cpu_count(), "cpu": cpu, "python": platform.python_version(),
+            "implementation": platform.python_implementation(), "numpy": np.__version__,
+            "platform": platform.platform()}
+
+
+def _cell(value: Any, fmt: str) -> str:
+    if value is None:
+        return "—"
+    if isinstance(value, str):
+        return value
+    if isinstance(value, float) and not math.isfinite(value):
+        return str(value)
+    return format(value, fmt)
+
+
+def format_table(columns: tuple[Column, ...], rows: list[tuple]) -> str:
+    """An aligned text table: text columns to the left, numbers to the right."""
+    cells = [[_cell(v, c.fmt) for c, v in zip(columns, row)] for row in rows]
+    widths = [max([len(c.header)] + [len(r[k]) for r in cells]) for k, c in enumerate(columns)]
+    text = [all(isinstance(row[k], str) or row[k] is None for row in rows) for k in range(len(columns))]
+
+    def line(values: list[str]) -> str:
+        return "  ".join(v.ljust(w) if t else v.rjust(w) for v, w, t in zip(values, widths, text)).rstrip()
+
+    out = [line([c.header for c in columns]), line(["-" * w for w in widths])]
+    out += [line(r) for r in cells]
+    return "\n".join(out)
+
+
+def _print_section(s: Section, out: TextIO) -> None:
+    print(f"\n{s.title}", file=out)
+    if s.skipped:
+        print(f"  {s.skipped}", file=out)
+        return
+    print(format_table(s.columns, s.rows), file=out)
+    for note in s.notes:
+        print(f"  · {note}", file=out)
+
+
+def _headlines(sections: dict[str, Section]) -> list[str]:
+    lines = []
+    t = sections.get("throughput")
+    if t and not t.skipped:
+        for r in t.rows:
+            verdict = "met" if r[5] >= THROUGHPUT_TARGET else f"NOT met, short by a factor {THROUGHPUT_TARGET / r[5]:.2f}"
+            lines.append(f"throughput {r[0]}: vectorised {r[5]:.1f}× the per-angle loop (target ≥ "
+                         f"{THROUGHPUT_TARGET:g}×: {verdict})")
+    p = sections.get("peer_comparison")
+    if p:
+        if p.skipped:
+            lines.append(f"peer comparison: {p.skipped}")
+        else:
+            for r in p.rows:
+                faster = f"plans {r[5]:.2f}× faster" if r[5] >= 1 else f"pylinkage {1 / r[5]:.2f}× faster"
+                lines.append(f"pylinkage {r[0]} ({r[1]}): {faster}; max |Δr| = {r[6]:.1e} m")
+    return lines
+
+
+def run(out_dir: str | Path = "output/bench", *, quick: bool = False, out: TextIO | None = None,
+        config: Config | None = None) -> dict[str, Any]:
+    """Measure every section, print the tables to ``out`` (standard output by default), write
+    ``bench.json`` and the charts into ``out_dir``; return the JSON report."""
+    cfg = config or (QUICK if quick else FULL)
+    out = out or sys.stdout
+    start = time.perf_counter()
+    info = machine()
+    print(f"plans bench ({cfg.name}): {info['cores']} cores, {info['cpu']}, Python {info['python']}, "
+          f"NumPy {info['numpy']}", file=out)
+    sections: dict[str, Section] = {}
+    timings: dict[str, float] = {}
+    for fn in SECTIONS:
+        t0 = time.perf_counter()
+        s = fn(cfg)
+        timings[s.key] = time.perf_counter() - t0
+        sections[s.key] = s
+        _print_section(s, out)
+        out.flush()
+    target = Path(out_dir)
+    target.mkdir(parents=True, exist_ok=True)
+    charts = [c for s in sections.values() for c in s.charts]
+    for c in charts:
+        (target / f"{c.name}.svg").write_text(draw_chart(c), encoding="utf-8", newline="\n")
+    elapsed = time.perf_counter() - start
+    headlines = _headlines(sections)
+    report = {
+        "config": cfg.name,
+        "machine": info,
+        "runtime_s": elapsed,
+        "section_runtime_s": timings,
+        "headlines": headlines,
+        "charts": [f"{c.name}.svg" for c in charts],
+        "sections": {k: {"title": s.title, "skipped": s.skipped, "notes": s.notes, "summary": s.summary,
+                         "columns": {c.key: c.header for c in s.columns}, "rows": s.records()}
+                     for k, s in sections.items()},
+    }
+    (target / "bench.json").write_text(json.dumps(report, indent=1, ensure_ascii=False, default=_json) + "\n",
+                                       encoding="utf-8", newline="\n")
+    print("", file=out)
+    for h in headlines:
+        print(h, file=out)
+    print(f"wrote {len(charts)} charts and bench.json to {target}/ in {elapsed:.1f} s", file=out)
+    return report
+
+
+def _json(v: Any) -> Any:
+    if isinstance(v, np.integer):
+        return int(v)
+    if isinstance(v, np.floating):
+        return float(v)
+    if isinstance(v, np.bool_):
+        return bool(v)
+    raise TypeError(f"{type(v).__name__} is not JSON serialisable")

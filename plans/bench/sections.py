@@ -1,0 +1,586 @@
+"""The measurements of ``plans bench``, one function per section.
+
+Each section function takes a :class:`Config` and returns a :class:`Section`: a table (rows
+of raw numbers with a header and a format per column), notes that say how to read it,
+headline figures (``summary``) and charts. Nothing here prints or writes files.
+
+1. :func:`drawing_precision` — SVG coordinate decimals → error of the drawn vectors, size, time
+2. :func:`solver_tolerance` — Newton tolerance → iterations, time, error vs the closed form
+3. :func:`cycle_resolution` — positions per revolution → error of graphical differentiation
+4. :func:`throughput` / :func:`render_rate` — vectorised analysis vs a per-angle loop; sheets/s
+5. :func:`peer_comparison` — the same cycles solved by pylinkage and by plans
+"""
+
+from __future__ import annotations
+
+import math
+import tempfile
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+from typing import Any, Callable
+
+import numpy as np
+
+from ..checking import check_svg
+from ..drawing import Style
+from ..errors import PlansError
+from ..kinematics import analyse
+from ..model import Mechanism, build_mechanism
+from ..render import render_scene
+from ..scene import read_scene
+from ..structure import Structure, analyse_structure
+from .chart import Chart, Series
+from .timing import best_time, once
+
+__all__ = ["Column", "Section", "Config", "FULL", "QUICK", "SECTIONS", "drawing_precision", "solver_tolerance",
+           "cycle_resolution", "throughput", "render_rate", "peer_comparison", "THROUGHPUT_TARGET"]
+
+#: The vectorised analysis should beat a per-angle Python loop by at least this factor.
+THROUGHPUT_TARGET = 20.0
+#: Relative errors of drawn vectors are taken over vectors drawn at least this long (mm):
+#: a vector of a few tenths of a millimetre has a large relative error at any precision.
+LONG_MM = 10.0
+
+
+@dataclass(frozen=True)
+class Column:
+    """A table column: JSON key, printed header, format spec of its values."""
+
+    key: str
+    header: str
+    fmt: str = ""
+
+
+@dataclass
+class Section:
+    """One measured section: a table with notes, headline figures and charts."""
+
+    key: str
+    title: str
+    columns: tuple[Column, ...] = ()
+    rows: list[tuple] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+    summary: dict[str, Any] = field(default_factory=dict)
+    charts: list[Chart] = field(default_factory=list)
+    skipped: str | None = None
+
+    def records(self) -> list[dict[str, Any]]:
+        """The rows as dictionaries keyed by column (JSON)."""
+        return [{c.key: _plain(v) for c, v in zip(self.columns, row)} for row in self.rows]
+
+
+def _plain(v: Any) -> Any:
+    if isinstance(v, (np.integer,)):
+        return int(v)
+    if isinstance(v, (np.floating, float)):
+        return float(v) if math.isfinite(v) else None
+    return v
+
+
+@dataclass(frozen=True)
+class Config:
+    """What to measure; :data:`FULL` for ``plans bench``, :data:`QUICK` for tests."""
+
+    name: str
+    precision_scenes: tuple[str, ...]          # example stems rendered at each precision (empty: all)
+    decimals: tuple[int, ...]
+    tolerances: tuple[float, ...]
+    solver_positions: int
+    resolutions: tuple[int, ...]
+    throughput_positions: int
+    loop_positions: int                        # the per-angle loop is timed on this many of them
+    batch_sizes: tuple[int, ...]
+    render_scenes: tuple[str, ...]
+    peer_positions: int
+    repeat: int
+
+
+FULL = Config("full", precision_scenes=(), decimals=(1, 2, 3, 4, 5, 6),
+              tolerances=tuple(10.0 ** -k for k in range(2, 15)), solver_positions=360,
+              resolutions=(8, 12, 24, 36, 72, 180, 360, 720, 3600), throughput_positions=3600, loop_positions=360,
+              batch_sizes=(1, 10, 100, 360, 1000, 3600), render_scenes=("crank_slider_central", "six_link_press"),
+              peer_positions=360, repeat=7)
+QUICK = Config("quick", precision_scenes=("crank_slider_central",), decimals=(2, 4), tolerances=(1e-3, 1e-8, 1e-12),
+               solver_positions=36, resolutions=(12, 36, 360), throughput_positions=360, loop_positions=12,
+               batch_sizes=(10, 360), render_scenes=("crank_slider_central",), peer_positions=36, repeat=1)
+
+
+# ---------------------------------------------------------------------------------------------
+# helpers
+
+def _example(stem: str) -> Path:
+    return Path(str(resources.files("plans.examples") / f"{stem}.toml"))
+
+
+def _all_examples() -> tuple[str, ...]:
+    root = resources.files("plans.examples")
+    return tuple(sorted(p.name[:-5] for p in root.iterdir() if p.name.endswith(".toml")))
+
+
+def _load(stem: str) -> tuple[Mechanism, Structure]:
+    mech = build_mechanism(read_scene(_example(stem)))
+    return mech, analyse_structure(mech)
+
+
+def _cycle(mech: Mechanism, n: int) -> np.ndarray:
+    """``n`` crank angles (degrees) evenly over one turn, starting at the sketch."""
+    return mech.drive.sketch_value + np.arange(n) * (360.0 / n)
+
+
+def _local_distance(mech: Mechanism, link: str, p: str, q: str) -> float:
+    loc = mech.links[link].local
+    return float(np.linalg.norm(loc[p] - loc[q]))
+
+
+def _max_norm(a: np.ndarray, b: np.ndarray) -> float:
+    return float(np.max(np.linalg.norm(np.asarray(a, float) - np.asarray(b, float), axis=-1)))
+
+
+# ---------------------------------------------------------------------------------------------
+# 1. drawing precision
+
+def drawing_precision(cfg: Config) -> Section:
+    """Render the examples with SVG coordinates rounded to 1…6 decimals, read every plan back
+    with :func:`plans.checking.check_svg` and compare each drawn vector × μ with its exact value."""
+    stems, failed = [], []
+    for stem in cfg.precision_scenes or _all_examples():
+        try:
+            render_scene(_example(stem))
+            stems.append(stem)
+        except PlansError as exc:   # a bundled scene this version cannot render: say so, measure the rest
+            failed.append(f"{stem} ({exc})")
+    paths = [_example(s) for s in stems]
+    rows = []
+    with tempfile.TemporaryDirectory(prefix="plans-bench-") as tmp:
+        for d in cfg.decimals:
+            style = Style(decimals=d)
+            seconds = 0.0
+            sheets = plan_sheets = size = vectors = 0
+            worst_rel = worst_mm = worst_frac = 0.0
+            for path in paths:
+                seconds += best_time(lambda: render_scene(path, style), repeat=cfg.repeat)
+                for name, text in render_scene(path, style).files.items():
+                    if not name.endswith(".svg"):
+                        continue
+                    sheets += 1
+                    f = Path(tmp) / f"d{d}-{name}"
+                    f.write_text(text, encoding="utf-8")
+                    found = check_svg(f)
+                    if not found:
+                        continue   # a scheme: no tagged vectors
+                    plan_sheets += 1
+                    size += len(text.encode("utf-8"))
+                    for m in found:
+                        vectors += 1
+                        worst_mm = max(worst_mm, m.error / m.mu)
+                        worst_frac = max(worst_frac, m.error / m.tolerance)
+                        if m.length_mm >= LONG_MM and m.value > 0:
+                            worst_rel = max(worst_rel, m.error / abs(m.value))
+            rows.append((d, vectors, worst_rel, worst_mm, worst_frac, size / plan_sheets / 1024,
+                         seconds / sheets * 1e3))
+    cols = (Column("decimals", "decimals", "d"), Column("vectors", "vectors", "d"),
+            Column("worst_rel_error", f"worst rel. error (≥{LONG_MM:g} mm)", ".1e"),
+            Column("worst_error_mm", "worst error (paper mm)", ".1e"),
+            Column("worst_over_check_tol", "worst / check tol.", ".2f"),
+            Column("kb_per_plan", "KB per plan", ".1f"), Column("ms_per_sheet", "ms per sheet", ".2f"))
+    xs = tuple(float(r[0]) for r in rows)
+    notes = [f"{len(stems)} scene(s): {', '.join(stems)}; every velocity and acceleration plan read back with "
+             "plans.checking.check_svg, drawn length × μ against the exact data-value.",
+             "worst / check tol. ≤ 1 means `plans check` accepts every vector (its bound is two rounded end points).",
+             "ms per sheet: the whole render_scene (solve, constructions, checks, SVG, JSON) divided by its SVG "
+             f"sheets, scheme included; best of {cfg.repeat}."]
+    if failed:
+        notes.append("not measured, render_scene failed: " + "; ".join(failed))
+    charts = [Chart("precision-error", "Drawing precision: error of the drawn vectors", "SVG coordinate decimals",
+                    "error", (Series(f"worst relative error (vectors ≥ {LONG_MM:g} mm)", xs,
+                                     tuple(r[2] for r in rows)),
+                              Series("worst error in paper mm", xs, tuple(r[3] for r in rows))), log_y=True),
+              Chart("precision-size", "Drawing precision: file size and render time", "SVG coordinate decimals",
+                    "KB per plan sheet  /  ms per sheet",
+                    (Series("KB per plan sheet", xs, tuple(r[5] for r in rows)),
+                     Series("ms per sheet (render_scene)", xs, tuple(r[6] for r in rows))), y_from_zero=True)]
+    summary = {"all_within_check_tolerance": all(r[4] <= 1.0 for r in rows),
+               "default_decimals": Style().decimals}
+    return Section("drawing_precision", "1. Drawing precision (SVG coordinate decimals)", cols, rows, notes,
+                   summary, charts)
+
+
+# ---------------------------------------------------------------------------------------------
+# 2. solver tolerance
+#
+# The iterative position solver under test. plans solves its class II groups in closed form,
+# so until the class III/IV Newton solver (plans/kinematics/generic.py) lands this section
+# measures a Newton solve of the four-bar's RRR group written here, against the closed form.
+# To measure another solver, change SOLVER_SCENE / SOLVER_POINT and make_iterative_solver():
+# it must return a function (drive angles in degrees, tolerance) → (positions of SOLVER_POINT,
+# shape (N, 2), in metres; Newton iterations per position, shape (N,)).
+
+#: An iterative solver: (angles in degrees, tolerance) → (positions (N, 2), iterations (N,)).
+IterativeSolver = Callable[[np.ndarray, float], tuple[np.ndarray, np.ndarray]]
+SOLVER_SCENE = "four_bar"
+SOLVER_POINT = "B"
+SOLVER_NAME = "bench Newton on the RRR group (four-bar), continued from the previous position"
+#: Newton steps allowed per position before it counts as not converged.
+MAX_ITERATIONS = 50
+
+
+def make_iterative_solver(mech: Mechanism, structure: Structure) -> IterativeSolver:
+    """The iterative solver the section measures (swap it here)."""
+    return _four_bar_newton(mech)
+
+
+def _four_bar_newton(mech: Mechanism) -> IterativeSolver:
+    """Newton's method on the loop closure of the four-bar O-A-B-C:
+
+        Φ(θ2, θ3) = A(φ) + l2·e(θ2) − C − l3·e(θ3) = 0,   e(θ) = (cos θ, sin θ),
+
+    with the Jacobian Φ_q = [l2·k×e(θ2), −l3·k×e(θ3)], whose determinant l2·l3·sin(θ3 − θ2)
+    vanishes where coupler and rocker are collinear. Each position starts from the previous
+    one (the sketch, at the first) and stops when |Φ| ≤ tol · size of the mechanism."""
+    d = mech.drive
+    ox, oy = (float(c) for c in mech.sketch[d.pivot])
+    r = _local_distance(mech, d.link, d.pivot, d.tip)
+    cx, cy = (float(c) for c in mech.sketch["C"])
+    l2 = _local_distance(mech, "2", "A", "B")
+    l3 = _local_distance(mech, "3", "C", "B")
+    a0, b0 = mech.sketch["A"], mech.sketch["B"]
+    t2_start = math.atan2(b0[1] - a0[1], b0[0] - a0[0])
+    t3_start = math.atan2(b0[1] - cy, b0[0] - cx)
+    size = mech.size
+
+    def solve(angles: np.ndarray, tol: float) -> tuple[np.ndarray, np.ndarray]:
+        out = np.empty((len(angles), 2))
+        iterations = np.empty(len(angles), dtype=int)
+        t2, t3 = t2_start, t3_start
+        bound = tol * size
+        cos, sin = math.cos, math.sin
+        for i, phi in enumerate(np.radians(angles).tolist()):
+            ax, ay = ox + r * cos(phi), oy + r * sin(phi)
+            k = 0
+            while True:
+                c2, s2, c3, s3 = cos(t2), sin(t2), cos(t3), sin(t3)
+                fx = ax + l2 * c2 - cx - l3 * c3
+                fy = ay + l2 * s2 - cy - l3 * s3
+                if math.hypot(fx, fy) <= bound or k >= MAX_ITERATIONS:
+                    break
+                j11, j12, j21, j22 = -l2 * s2, l3 * s3, l2 * c2, -l3 * c3
+                det = j11 * j22 - j12 * j21
+                t2 += (-fx * j22 + fy * j12) / det       # Cramer's rule on Φ_q·Δq = −Φ
+                t3 += (-fy * j11 + fx * j21) / det
+                k += 1
+            out[i] = (ax + l2 * cos(t2), ay + l2 * sin(t2))
+            iterations[i] = k
+        return out, iterations
+
+    return solve
+
+
+def solver_tolerance(cfg: Config) -> Section:
+    """Tolerance 1e-2 … 1e-14 → Newton iterations, time per position and error against the
+    closed-form positions of plans.kinematics.analyse."""
+    mech, structure = _load(SOLVER_SCENE)
+    n = cfg.solver_positions
+    angles = _cycle(mech, n)
+    exact = analyse(mech, structure, angles, order=0).position(SOLVER_POINT)
+    t_closed = best_time(lambda: analyse(mech, structure, angles, order=0), repeat=cfg.repeat)
+    solve = make_iterative_solver(mech, structure)
+    rows = []
+    for tol in cfg.tolerances:
+        pts, its = solve(angles, tol)
+        t = best_time(lambda: solve(angles, tol), repeat=cfg.repeat)
+        err = _max_norm(pts, exact)
+        rows.append((tol, float(np.mean(its)), int(np.max(its)), int(np.sum(its >= MAX_ITERATIONS)), t / n * 1e6,
+                     err, err / mech.size))
+    cols = (Column("tolerance", "tolerance", ".0e"), Column("mean_iterations", "mean iter.", ".2f"),
+            Column("max_iterations", "max iter.", "d"), Column("not_converged", "not conv.", "d"),
+            Column("us_per_position", "µs per position", ".1f"), Column("max_error_m", "max error (m)", ".1e"),
+            Column("error_over_size", "error / size", ".1e"))
+    xs = tuple(r[0] for r in rows)
+    notes = [f"solver: {SOLVER_NAME}; {n} positions per turn ({360 / n:g}° steps), point {SOLVER_POINT} of "
+             f"{SOLVER_SCENE} (size {mech.size:.3g} m); stop when |Φ| ≤ tolerance × size; best of {cfg.repeat}.",
+             f"closed form (plans.kinematics.analyse, order 0, same positions): {t_closed / n * 1e6:.1f} µs per "
+             "position, exact to rounding.",
+             "The lead can point this section at plans/kinematics/generic.py by replacing make_iterative_solver() "
+             "in plans/bench/sections.py."]
+    charts = [Chart("solver-tolerance", "Solver tolerance: error against the closed form", "tolerance",
+                    "max error / size", (Series("max error / size", xs, tuple(r[6] for r in rows)),
+                                         Series("tolerance (reference)", xs, xs)), log_x=True, log_y=True),
+              Chart("solver-iterations", "Solver tolerance: Newton iterations per position", "tolerance",
+                    "iterations", (Series("mean iterations", xs, tuple(r[1] for r in rows)),
+                                   Series("max iterations", xs, tuple(float(r[2]) for r in rows))), log_x=True,
+                    y_from_zero=True)]
+    summary = {"solver": SOLVER_NAME, "closed_form_us_per_position": t_closed / n * 1e6,
+               "positions": n, "size_m": mech.size}
+    return Section("solver_tolerance", "2. Solver tolerance (iterative position solve vs closed form)", cols, rows,
+                   notes, summary, charts)
+
+
+# ---------------------------------------------------------------------------------------------
+# 3. cycle resolution
+
+CYCLE_SCENE = "crank_slider_central"
+
+
+def cycle_resolution(cfg: Config) -> Section:
+    """Positions per revolution → error of the slider's velocity and acceleration found by
+    graphical differentiation (periodic central differences of s(φ)) against the exact ones."""
+    mech, structure = _load(CYCLE_SCENE)
+    prism = next(p for p in mech.prismatics if p.guide == "0")
+    u = np.asarray(prism.direction, float)            # the guide is fixed in the frame: a world direction
+    point = prism.label
+    omega, eps = mech.drive.speed, mech.drive.rate
+
+    def numeric(angles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        s = analyse(mech, structure, angles, order=0).position(point) @ u
+        h = math.radians(360.0 / len(angles))
+        nxt, prv = np.roll(s, -1), np.roll(s, 1)
+        d1 = (nxt - prv) / (2 * h)
+        d2 = (nxt - 2 * s + prv) / (h * h)
+        return d1 * omega, d2 * omega ** 2 + d1 * eps   # v = s'·ω, a = s''·ω² + s'·ε
+
+    rows = []
+    prev = None
+    for n in cfg.resolutions:
+        angles = _cycle(mech, n)
+        exact = analyse(mech, structure, angles, order=2)
+        v_ex, a_ex = exact.velocity(point) @ u, exact.acceleration(point) @ u
+        v_num, a_num = numeric(angles)
+        ev = float(np.max(np.abs(v_num - v_ex)) / np.max(np.abs(v_ex)))
+        ea = float(np.max(np.abs(a_num - a_ex)) / np.max(np.abs(a_ex)))
+        order = None if prev is None else math.log(prev[1] / ev) / math.log(n / prev[0])
+        t_num = best_time(lambda: numeric(angles), repeat=cfg.repeat)
+        t_ex = best_time(lambda: analyse(mech, structure, angles, order=2), repeat=cfg.repeat)
+        rows.append((n, 360.0 / n, ev, ea, order, t_num * 1e3, t_ex * 1e3))
+        prev = (n, ev)
+    cols = (Column("positions", "positions/turn", "d"), Column("step_deg", "step (°)", "g"),
+            Column("v_rel_error", "v rel. error", ".1e"), Column("a_rel_error", "a rel. error", ".1e"),
+            Column("observed_order_v", "order (v)", ".2f"), Column("ms_numeric", "ms differentiated", ".2f"),
+            Column("ms_exact", "ms exact", ".2f"))
+    xs = tuple(float(r[0]) for r in rows)
+    notes = [f"slider {point} of {CYCLE_SCENE}: s(φ) along its guide at n evenly spaced crank angles; "
+             "v = ω·(s[k+1] − s[k−1])/2h, a = ω²·(s[k+1] − 2s[k] + s[k−1])/h² (periodic), against "
+             "plans.kinematics.analyse(order=2); errors relative to the largest |v|, |a| over the turn.",
+             "ms differentiated: positions (order 0) + differences; ms exact: the analytic velocities and "
+             f"accelerations at the same positions; best of {cfg.repeat}. Both walk the drive in 1° steps from "
+             "the sketch, so below 360 positions the time hardly changes."]
+    charts = [Chart("cycle-resolution", "Cycle resolution: graphical differentiation of s(φ)",
+                    "positions per revolution", "relative error",
+                    (Series("velocity", xs, tuple(r[2] for r in rows)),
+                     Series("acceleration", xs, tuple(r[3] for r in rows))), log_x=True, log_y=True,
+                    note="central differences: error ∝ h² (slope −2)")]
+    return Section("cycle_resolution", "3. Cycle resolution (graphical differentiation vs exact)", cols, rows,
+                   notes, {"scene": CYCLE_SCENE, "point": point}, charts)
+
+
+# ---------------------------------------------------------------------------------------------
+# 4. throughput
+
+THROUGHPUT_SCENES = ("crank_slider_central", "six_link_press")
+
+
+def throughput(cfg: Config) -> Section:
+    """Positions per second of the full analysis (order 2) vectorised over N angles against
+    a Python loop calling analyse with one angle at a time."""
+    rows = []
+    series = []
+    loop_series = []
+    batch: dict[str, dict[int, float]] = {}
+    n = cfg.throughput_positions
+    for stem in THROUGHPUT_SCENES:
+        mech, structure = _load(stem)
+        angles = _cycle(mech, n)
+        t_vec = best_time(lambda: analyse(mech, structure, angles, order=2), repeat=cfg.repeat)
+        vec = analyse(mech, structure, angles, order=2)
+        pick = np.linspace(0, n, cfg.loop_positions, endpoint=False).astype(int)
+        t_loop, singles = once(lambda: [analyse(mech, structure, angles[i:i + 1], order=2) for i in pick])
+        r_vec = {p: vec.position(p) for p in mech.sketch}
+        a_vec = {p: vec.acceleration(p) for p in mech.sketch}
+        a_max = max(float(np.max(np.linalg.norm(a, axis=1))) for a in a_vec.values())
+        diff = max(max(_max_norm(m.position(p), r_vec[p][i:i + 1]),
+                       _max_norm(m.acceleration(p), a_vec[p][i:i + 1]) / a_max)
+                   for m, i in zip(singles, pick) for p in mech.sketch)
+        per_vec, per_loop = t_vec / n, t_loop / len(pick)
+        ratio = per_loop / per_vec
+        rows.append((stem, n, 1 / per_vec, len(pick), 1 / per_loop, ratio,
+                     "met" if ratio >= THROUGHPUT_TARGET else f"short ×{THROUGHPUT_TARGET / ratio:.2f}", diff))
+        sizes = tuple(b for b in cfg.batch_sizes if b <= n)
+        rates = []
+        for b in sizes:
+            sub = _cycle(mech, b)
+            rates.append(b / best_time(lambda: analyse(mech, structure, sub, order=2), repeat=cfg.repeat))
+        batch[stem] = dict(zip(sizes, rates))
+        series.append(Series(f"{stem}: vectorised", tuple(float(b) for b in sizes), tuple(rates)))
+        loop_series.append(Series(f"{stem}: per-angle loop", tuple(float(b) for b in sizes),
+                                  tuple(1 / per_loop for _ in sizes)))
+    cols = (Column("scene", "scene", "s"), Column("positions", "N", "d"),
+            Column("vectorised_per_s", "vectorised pos/s", ",.0f"), Column("loop_timed_on", "loop timed on", "d"),
+            Column("loop_per_s", "loop pos/s", ",.0f"), Column("ratio", "ratio", ".1f"),
+            Column("target", f"≥{THROUGHPUT_TARGET:g}×", "s"), Column("max_rel_difference", "loop vs vec. Δ", ".0e"))
+    notes = [f"full analysis (positions + velocities + accelerations, plans.kinematics.analyse order=2) over N "
+             f"crank angles evenly over a turn in one call (best of {cfg.repeat}), against a Python loop calling "
+             "analyse with one angle at a time.",
+             f"The loop is timed once on {cfg.loop_positions} of the N angles, evenly spread over the turn, and "
+             "extrapolated per position; each call walks the drive from the sketch to its angle in 1° steps, as "
+             "a single-angle render does.",
+             "loop vs vec. Δ: largest difference between the two results (positions in m, accelerations "
+             "relative to the largest), a check that both computed the same thing."]
+    short = [r for r in rows if r[5] < THROUGHPUT_TARGET]
+    summary = {"target": THROUGHPUT_TARGET, "met": not short, "ratios": {r[0]: r[5] for r in rows},
+               "vectorised_per_s_by_batch": batch}
+    if short:
+        notes.append("below target: " + "; ".join(f"{r[0]} reaches {r[5]:.1f}×, short by a factor "
+                                                  f"{THROUGHPUT_TARGET / r[5]:.2f}" for r in short))
+    charts = [Chart("throughput", "Throughput of the full analysis (order 2)", "positions per call (N)",
+                    "positions per second", tuple(series + loop_series), log_x=True, log_y=True)]
+    return Section("throughput", f"4. Throughput (vectorised vs per-angle loop, target ≥ {THROUGHPUT_TARGET:g}×)",
+                   cols, rows, notes, summary, charts)
+
+
+def render_rate(cfg: Config) -> Section:
+    """Plans rendered per second by plans.render.render_scene (everything but writing files)."""
+    rows = []
+    for stem in cfg.render_scenes:
+        path = _example(stem)
+        r = render_scene(path)
+        sheets = sum(name.endswith(".svg") for name in r.files)
+        t = best_time(lambda: render_scene(path), repeat=cfg.repeat)
+        rows.append((stem, len(r.motion), sheets, t * 1e3, sheets / t, 1 / t))
+    cols = (Column("scene", "scene", "s"), Column("positions", "positions", "d"), Column("sheets", "sheets", "d"),
+            Column("ms_per_scene", "ms per scene", ".1f"), Column("sheets_per_s", "sheets/s", ".0f"),
+            Column("scenes_per_s", "scenes/s", ".1f"))
+    notes = ["render_scene: read, solve, scales, constructions, shapely and similarity checks, SVG and JSON text "
+             f"(files not written); sheets = scheme + velocity + acceleration plans per position; best of "
+             f"{cfg.repeat}."]
+    return Section("render_rate", "4b. Plans rendered per second", cols, rows, notes)
+
+
+# ---------------------------------------------------------------------------------------------
+# 5. peer comparison
+
+PEER_SCENES = ("crank_slider_central", "four_bar")
+INSTALL_HINT = 'pip install ".[bench]"'
+
+
+def _pylinkage_model(pl, mech: Mechanism, stem: str, first_deg: float, step_deg: float):
+    """The scene as a pylinkage Linkage: same dimensions, crank angles first_deg, first_deg +
+    step_deg, … on its successive steps, the assembly branch of the sketch (given as the
+    initial position of the dyad's joint). Returns the linkage, its crank, and the index in
+    ``linkage.components`` of every compared point."""
+    d = mech.drive
+    o = mech.sketch[d.pivot]
+    step = math.radians(step_deg)
+    ground = pl.Ground(float(o[0]), float(o[1]), name=d.pivot)
+    crank = pl.Crank(ground, _local_distance(mech, d.link, d.pivot, d.tip), angular_velocity=step,
+                     initial_angle=math.radians(first_deg) - step, name=d.tip)   # step() turns before it yields
+    if stem == "crank_slider_central":
+        prism = next(p for p in mech.prismatics if p.guide == "0")
+        b = mech.sketch[prism.label]
+        anchor = np.asarray(prism.anchor["0"], float)
+        ahead = anchor + np.asarray(prism.direction, float)
+        line0 = pl.Ground(float(anchor[0]), float(anchor[1]), name="guide-0")
+        line1 = pl.Ground(float(ahead[0]), float(ahead[1]), name="guide-1")
+        slider = pl.RRPDyad(crank.output, line0, line1, _local_distance(mech, "2", d.tip, prism.label),
+                            x=float(b[0]), y=float(b[1]), name=prism.label)
+        components = [ground, line0, line1, crank, slider]
+        points = {d.tip: 3, prism.label: 4}
+    elif stem == "four_bar":
+        c, b = mech.sketch["C"], mech.sketch["B"]
+        pivot = pl.Ground(float(c[0]), float(c[1]), name="C")
+        rocker = pl.RRRDyad(crank.output, pivot, _local_distance(mech, "2", "A", "B"),
+                            _local_distance(mech, "3", "C", "B"), x=float(b[0]), y=float(b[1]), name="B")
+        components = [ground, pivot, crank, rocker]
+        points = {d.tip: 2, "B": 3}
+    else:   # pragma: no cover - only the two scenes above are modelled
+        raise ValueError(f"no pylinkage model of {stem}")
+    linkage = pl.Linkage(components, name=stem)
+    linkage.set_input_velocity(crank, d.speed, d.rate)
+    return linkage, points
+
+
+def peer_comparison(cfg: Config) -> Section:
+    """The crank-slider and the four-bar over one turn, solved by pylinkage and by plans in the
+    same run: time ratio and largest differences of positions, velocities, accelerations."""
+    title = "5. Peer comparison (pylinkage, same cycles)"
+    try:
+        import pylinkage as pl
+    except ImportError:
+        return Section("peer_comparison", title, skipped="pylinkage is not installed: section skipped; install "
+                       f"the bench extra with  {INSTALL_HINT}")
+    try:
+        from pylinkage._numba_compat import HAS_NUMBA   # pylinkage's own flag; absent in other versions
+    except ImportError:   # pragma: no cover
+        HAS_NUMBA = None
+    version = getattr(pl, "__version__", "?")
+    n = cfg.peer_positions
+    rows = []
+    curves = []
+    for stem in PEER_SCENES:
+        mech, structure = _load(stem)
+        angles = _cycle(mech, n)
+        step = 360.0 / n
+
+        def fresh():
+            return _pylinkage_model(pl, mech, stem, float(angles[0]), step)
+
+        def best_pyl(method: str) -> tuple[float, list]:
+            best, out = math.inf, None
+            for _ in range(max(cfg.repeat, 1)):
+                linkage, _ = fresh()
+                t, out = once(lambda: list(getattr(linkage, method)(n)))
+                best = min(best, t)
+            return best, out
+
+        t_pyl_pos, steps = best_pyl("step")
+        t_pyl_all, derived = best_pyl("step_with_derivatives")
+        t_plans_pos = best_time(lambda: analyse(mech, structure, angles, order=0), repeat=cfg.repeat)
+        t_plans_all = best_time(lambda: analyse(mech, structure, angles, order=2), repeat=cfg.repeat)
+        motion = analyse(mech, structure, angles, order=2)
+        _, index = fresh()
+        dr = dr_all = dv = da = 0.0
+        worst_curve = np.zeros(n)
+        for p, k in index.items():
+            pos = np.array([s[k] for s in steps], dtype=float)
+            pos2 = np.array([s[0][k] for s in derived], dtype=float)
+            vel = np.array([s[1][k] for s in derived], dtype=float)
+            acc = np.array([s[2][k] for s in derived], dtype=float)
+            gap = np.linalg.norm(pos - motion.position(p), axis=1)
+            worst_curve = np.maximum(worst_curve, gap)
+            dr = max(dr, float(np.max(gap)))
+            dr_all = max(dr_all, _max_norm(pos2, motion.position(p)))
+            dv = max(dv, _max_norm(vel, motion.velocity(p)))
+            da = max(da, _max_norm(acc, motion.acceleration(p)))
+        compared = ", ".join(index)
+        rows.append((stem, "positions", n, t_plans_pos * 1e3, t_pyl_pos * 1e3, t_pyl_pos / t_plans_pos, dr,
+                     None, None, compared))
+        rows.append((stem, "pos + vel + acc", n, t_plans_all * 1e3, t_pyl_all * 1e3, t_pyl_all / t_plans_all,
+                     dr_all, dv, da, compared))
+        curves.append(Series(f"{stem} (points {compared})", tuple(float(a - angles[0]) for a in angles),
+                             tuple(worst_curve)))
+    cols = (Column("scene", "scene", "s"), Column("what", "what", "s"), Column("positions", "N", "d"),
+            Column("plans_ms", "plans ms", ".2f"), Column("pylinkage_ms", "pylinkage ms", ".2f"),
+            Column("speed_ratio", "pylinkage/plans time", ".2f"), Column("max_dr_m", "max |Δr| (m)", ".1e"),
+            Column("max_dv", "max |Δv| (m/s)", ".1e"), Column("max_da", "max |Δa| (m/s²)", ".1e"),
+            Column("points", "points", "s"))
+    notes = [f"pylinkage {version} (numba {'installed' if HAS_NUMBA else 'not installed: its pure-Python path'}): "
+             "Linkage.step() for positions, step_with_derivatives() with set_input_velocity(ω, ε) for velocities "
+             "and accelerations; plans: analyse(order=0) and analyse(order=2).",
+             f"Same dimensions (read from the plans model), same {n} crank angles from the sketch's "
+             f"({360 / n:g}° steps), same assembly branch (pylinkage's dyad starts at the sketch's joint); model "
+             f"construction not timed; best of {cfg.repeat}.",
+             "pylinkage/plans time > 1: plans is faster. plans walks the drive from the sketch in 1° steps "
+             "(branch continuation) whatever N, which is most of its time at small N.",
+             "|Δr| grows along the turn because pylinkage turns its crank step by step (atan2 of the current "
+             "position + Δφ), so its crank pin A itself drifts by rounding; plans places every angle directly."]
+    summary = {"pylinkage": version, "numba": HAS_NUMBA,
+               "max_position_difference_m": max(r[6] for r in rows),
+               "plans_faster": {f"{r[0]} {r[1]}": r[5] > 1 for r in rows}}
+    charts = [Chart("peer-difference", "pylinkage vs plans: position difference over the turn",
+                    "crank turned from the sketch (°)", "largest |Δr| of the compared points (m)", tuple(curves),
+                    log_y=True)]
+    return Section("peer_comparison", title, cols, rows, notes, summary, charts)
+
+
+#: Every section in the order ``plans bench`` runs and prints them.
+SECTIONS: tuple[Callable[[Config], Section], ...] = (drawing_precision, solver_tolerance, cycle_resolution,
+                                                     throughput, render_rate, peer_comparison)

@@ -1,0 +1,174 @@
+"""The instantaneous-centres sheet at one position, as geometry in paper millimetres.
+
+On the scheme, every moving link's absolute centre P_j is marked and joined (dashed) to the
+link's points: each segment P_j–X is perpendicular to v_X, and its length × μl is |X P_j|,
+which is what makes |v_X| = |ω_j|·|X P_j| readable from the sheet. Each segment is run on
+through the pin X to the centre of the link on the other side of the pin, P_k, when that is
+finite — the three centres P_j, P_jk = X, P_k lie on one line (Aronhold–Kennedy) — so the
+sheet shows how each centre is found: the centre of a rod from the line of the crank and
+the line through the base link's centre and the rod's pin (Koshel's variant 1); for a class
+III group whose base link's centre cannot be found from two known velocity directions, from
+the special points S (the lines through S ⊥ v_S; variant 2). Centres off the sheet or at
+infinity are drawn as a direction from the link.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..kinematics import Motion, special
+from ..kinematics.centres import Centres
+from ..scene import FRAME
+from ..structure import ComplexGroup
+from .scales import fitting_scale
+from .scheme import Scheme, scheme
+
+__all__ = ["CentreMark", "CentreRay", "CentresSheet", "centres_sheet", "REACH"]
+
+#: Centres further than REACH mechanism sizes from the mechanism are drawn as directions.
+REACH = 1.5
+#: The sheet's drawing area (mm): the scheme plus every centre within reach.
+SHEET_MM = (220.0, 170.0)
+#: How far a construction line runs past the last point it joins, mm.
+OVERRUN_MM = 8.0
+
+
+@dataclass(frozen=True)
+class CentreMark:
+    """A centre: ``xy`` on the sheet (mm), or None and ``direction`` (unit) drawn from
+    ``anchor`` when it is at infinity (``infinite``) or off the sheet."""
+
+    name: str
+    link: str
+    xy: tuple[float, float] | None
+    direction: tuple[float, float] | None
+    anchor: tuple[float, float]
+    infinite: bool
+
+
+@dataclass(frozen=True)
+class CentreRay:
+    """A measured segment from centre ``name`` to scene point ``point``: its value is the
+    distance |X P| in metres (drawn length × μl)."""
+
+    quantity: str
+    start: tuple[float, float]
+    end: tuple[float, float]
+    value: float
+
+
+@dataclass(frozen=True)
+class CentresSheet:
+    """The scheme, the centres, the measured rays, the dashed construction lines and the
+    special points of class III groups (name → mm) at one position."""
+
+    scheme: Scheme
+    mu_l: float
+    marks: tuple[CentreMark, ...]
+    rays: tuple[CentreRay, ...]
+    lines: tuple[tuple[tuple[float, float], tuple[float, float]], ...]
+    special: tuple[tuple[str, tuple[float, float]], ...]
+
+
+def _xy(v) -> tuple[float, float]:
+    return (float(v[0]), float(v[1]))
+
+
+def _segment(points: list[np.ndarray]) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The segment covering collinear ``points`` (mm), run on by OVERRUN_MM at both ends."""
+    pts = np.array(points)
+    u = pts[-1] - pts[0]
+    u = u / (np.linalg.norm(u) or 1.0)
+    t = (pts - pts[0]) @ u
+    return _xy(pts[0] + (t.min() - OVERRUN_MM) * u), _xy(pts[0] + (t.max() + OVERRUN_MM) * u)
+
+
+def centres_sheet(motion: Motion, ic: Centres, i: int) -> CentresSheet:
+    """The centres sheet at position ``i``; ``ic`` from :func:`plans.kinematics.centres.centres`."""
+    mech = motion.mechanism
+    world = {p: motion.position(p)[i] for p in mech.sketch}
+    pts = np.array(list(world.values()))
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    middle, size = (lo + hi) / 2.0, float(np.hypot(*(hi - lo))) or mech.size
+    near = {}
+    for name, c in ic.absolute.items():
+        p = c.point[i]
+        if not np.isnan(p[0]) and np.linalg.norm(p - middle) <= REACH * size:
+            near[name] = p
+    specials = _special_points(motion, i)
+    reach = [v for v in specials.values() if np.linalg.norm(v[0] - middle) <= REACH * size]
+    every = np.array(list(world.values()) + list(near.values()) + [r[0] for r in reach])
+    ext = every.max(axis=0) - every.min(axis=0)
+    mu = max(fitting_scale(float(ext[0]) or size, SHEET_MM[0]), fitting_scale(float(ext[1]) or size, SHEET_MM[1]))
+    sch = scheme(motion, i, mu)
+    marks, rays, lines = [], [], []
+    for name, c in ic.absolute.items():
+        link_pts = [p for p in mech.links[name].points if p in world]
+        anchor = np.mean([world[p] for p in link_pts], axis=0) / mu
+        if name in near:
+            marks.append(CentreMark(c.name, name, _xy(near[name] / mu), None, _xy(anchor), False))
+            for p in link_pts:
+                x = world[p]
+                if np.linalg.norm(x - near[name]) / mu < 1e-9:
+                    continue   # the centre is this point (a pivot on the frame)
+                rays.append(CentreRay(f"r:{p}/{c.name}", _xy(near[name] / mu), _xy(x / mu),
+                                      float(np.linalg.norm(x - near[name]))))
+                through = [near[name] / mu, x / mu]
+                other = _neighbour_centre(mech, name, p, near)
+                if other is not None:
+                    through.append(other / mu)
+                lines.append(_segment(through))
+            continue
+        infinite = np.isnan(c.point[i][0])
+        if infinite:
+            d = c.direction[i]
+            if not np.any(d):
+                continue   # a link at rest: no centre to show
+        else:
+            d = (c.point[i] - anchor * mu) / np.linalg.norm(c.point[i] - anchor * mu)
+        marks.append(CentreMark(c.name, name, None, _xy(d), _xy(anchor), bool(infinite)))
+    special_marks = []
+    for label, (s, v) in specials.items():
+        if np.linalg.norm(s - middle) > REACH * size:
+            continue
+        special_marks.append((label.split(":")[0], _xy(s / mu)))
+        base = _base_of(motion, label)
+        centre = near.get(base)
+        if centre is not None and np.linalg.norm(v) > 0.0:
+            lines.append(_segment([s / mu, centre / mu]))   # S–P_base ⊥ v_S
+    return CentresSheet(sch, mu, tuple(marks), tuple(rays), tuple(lines), tuple(special_marks))
+
+
+def _neighbour_centre(mech, link: str, point: str, near: dict[str, np.ndarray]) -> np.ndarray | None:
+    """The absolute centre of another link pinned to ``link`` at ``point`` (the frame's
+    pivot itself when that link is the frame), if it is on the sheet."""
+    for name, l in mech.links.items():
+        if name == link or point not in l.local:
+            continue
+        if name == FRAME:
+            return None
+        if name in near:
+            return near[name]
+    return None
+
+
+def _special_points(motion: Motion, i: int) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+    """The special points of every class III group at position i: label → (S, v_S)."""
+    out = {}
+    states = {name: s.take(np.array([i])) for name, s in motion.links.items()}
+    for g in motion.structure.groups:
+        if not (isinstance(g, ComplexGroup) and special.supports(g)):
+            continue
+        for p in special.special_points(g, motion.mechanism, states):
+            if abs(float(p.sin[0])) < 1e-9:
+                continue
+            s = p.position[0]
+            v = states[g.base].velocity(s[None, :])[0]
+            out[f"{p.name}:{g.base}"] = (s, v)
+    return out
+
+
+def _base_of(motion: Motion, label: str) -> str:
+    return label.split(":")[1]
