@@ -3,6 +3,8 @@ from pathlib import Path
 import pytest
 
 EXAMPLES = sorted((Path(__file__).resolve().parent.parent / "plans" / "examples").glob("*.toml"))
+#: The example the bad-input and contract tests edit: the central crank-slider.
+CRANK_SLIDER = next(p for p in EXAMPLES if p.stem == "crank_slider_central")
 
 
 @pytest.fixture(scope="session")

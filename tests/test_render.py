@@ -14,7 +14,7 @@ from plans.checking import check_svg
 from plans.cli import main
 from plans.constructions.scales import SERIES
 
-from conftest import EXAMPLES
+from conftest import CRANK_SLIDER, EXAMPLES
 
 SVG = "{http://www.w3.org/2000/svg}"
 
@@ -91,7 +91,7 @@ def test_scales_are_standard_and_reference_vectors_80_to_120_mm(rendered):
 
 def test_output_is_deterministic(tmp_path):
     a, b = tmp_path / "a", tmp_path / "b"
-    scene = str(EXAMPLES[0])
+    scene = str(CRANK_SLIDER)
     assert main(["render", scene, "-o", str(a), "-q"]) == 0
     assert main(["render", scene, "-o", str(b), "-q"]) == 0
     names = sorted(p.name for p in a.iterdir())
@@ -115,7 +115,7 @@ def test_json_report_structure(rendered):
 
 
 def test_only_what_is_drawn_is_computed(tmp_path):
-    text = EXAMPLES[0].read_text().replace('draw = ["scheme", "velocity", "acceleration"]', 'draw = ["velocity"]')
+    text = CRANK_SLIDER.read_text().replace('draw = ["scheme", "velocity", "acceleration"]', 'draw = ["velocity"]')
     scene = tmp_path / "v_only.toml"
     scene.write_text(text)
     assert main(["render", str(scene), "-o", str(tmp_path / "o"), "-q"]) == 0
@@ -127,7 +127,7 @@ def test_only_what_is_drawn_is_computed(tmp_path):
     assert sorted(p.name for p in (tmp_path / "o").iterdir()) == ["v_only-velocity.svg", "v_only.json"]
 
 
-GOOD = EXAMPLES[0].read_text()
+GOOD = CRANK_SLIDER.read_text()
 
 
 @pytest.mark.parametrize("edit, needle", [

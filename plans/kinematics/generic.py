@@ -208,12 +208,16 @@ class GroupEquations:
             s = states[name]
             states[name] = s.with_acceleration(x[:, c + 2], s.origin, x[:, c:c + 2])
 
-    def newton(self, q: np.ndarray, known: States, *, tol: float = TOLERANCE, maxiter: int = MAX_ITER) -> NewtonResult:
-        """Newton's method from ``q`` (N, 3k) at every position at once."""
+    def newton(self, q: np.ndarray, known: States, *, tol: float = TOLERANCE, maxiter: int = MAX_ITER,
+               polish: bool = True) -> NewtonResult:
+        """Newton's method from ``q`` (N, 3k) at every position at once, until the largest
+        residual is below ``tol``·size; with ``polish``, one more step then takes the
+        quadratically converging iteration down to rounding level."""
         q = q.copy()
         limit = tol * self.size
         res = np.inf
-        for it in range(maxiter + 1):
+        polishing = False
+        for it in range(maxiter + 2):
             st = self.states(q, known)
             phi = self.residual(st)
             for k, pair in enumerate(self.pairs):
@@ -222,15 +226,17 @@ class GroupEquations:
             res = float(np.max(np.abs(phi))) if phi.size else 0.0
             if not np.isfinite(res):
                 return NewtonResult(q, it, res, False)
+            if polishing or (res <= limit and not polish):
+                return NewtonResult(q, it, res, res <= limit)
             if res <= limit:
-                return NewtonResult(q, it, res, True)
-            if it == maxiter:
+                polishing = True
+            elif it >= maxiter:
                 break
             a = self._scaled(self.jacobian(st))
             try:
                 dx = np.linalg.solve(a, -phi[..., None])[..., 0]
-            except np.linalg.LinAlgError:
-                return NewtonResult(q, it, res, False)
+            except np.linalg.LinAlgError:   # a singular position: converged if the residual says so
+                return NewtonResult(q, it, res, res <= limit)
             dx[:, 2::3] /= self.size   # the scaled unknown is size·Δθ
             q = q + dx
         return NewtonResult(q, maxiter, res, False)
