@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from .checking import check_plan, similarity_ratio
-from .constructions import Scales, acceleration_plan, choose_scales, scheme, velocity_plan
+from .constructions import Scales, acceleration_plan, choose_scales, scheme, uncertain_plan, velocity_plan
 from .constructions.scales import extent_of
 from .constructions.centres import centres_sheet
 from .drawing import Style, draw_centres, draw_plan, draw_scheme
@@ -182,6 +182,21 @@ def render_scene(path: str | Path, style: Style = Style()) -> Rendered:
             files[f"{stem}-centres{sfx}.svg"] = draw_centres(
                 sheet, title=f"{scene.title}: instantaneous centres", subtitle=label, formula=formula,
                 ident=f"centres{sfx or ''}", style=style)
+        if "velocity" in scene.draw:
+            for g in solutions:
+                plan = uncertain_plan(motion, i, g)
+                if plan is None:
+                    continue
+                failures = check_plan(plan) + _similarity(motion, plan, i)
+                if failures:
+                    raise PlansError(f"{path}: Koshel's plan at {motion.values[i]:g} failed its geometric check: "
+                                     f"{failures[0]} (please report this scene)")
+                first = next(v for v in plan.vectors if v.kind == "absolute")
+                files[f"{stem}-koshel{sfx}.svg"] = draw_plan(
+                    plan, title=f"{scene.title}: velocity plan in an uncertain scale (Koshel)",
+                    subtitle=f"{label}; p{first.quantity[2:].lower()} = {first.length:g} mm ⊥ P{g.base}"
+                             f"{first.quantity[2:]} (arbitrary), then the scale from the crank pin's speed",
+                    ident=f"koshel{sfx or ''}", style=style)
         for kind, builder, mu in (("velocity", velocity_plan, scales.mu_v), ("acceleration", acceleration_plan,
                                                                               scales.mu_a)):
             if kind not in scene.draw:

@@ -279,3 +279,27 @@ def test_near_singular_triad_matches_finite_differences(delta):
                           for q in mech.links[l].points)
             assert np.linalg.norm(v - v_fd) <= 1e-7 * scale_v
             assert np.linalg.norm(a - a_fd) <= 1e-7 * scale_a
+
+
+@pytest.mark.parametrize("name", ["koshel_variant1", "koshel_variant2"])
+def test_uncertain_scale_plan(name):
+    """Koshel's plan: the first vector is 60 mm ⊥ P–X; K_V = V_Y/|py| with Y the crank's pin;
+    |pc|/|px| = PC/PX for the base link's other pins (P from the JSON-level centres)."""
+    from plans.constructions import uncertain_plan
+    mech, st = _load(_scene(name))
+    motion = analyse(mech, st, FULL_TURN[::6], order=1)
+    ic = centres(motion)
+    (g,) = st.groups
+    for i in range(len(motion)):
+        plan = uncertain_plan(motion, i, g)
+        assert plan is not None and check_plan(plan) == []
+        vec = {v.quantity: v for v in plan.vectors}
+        rod = next(r for r in g.rods if r.outer.b != "0")
+        x, y = rod.inner.point, rod.outer.point
+        assert vec[f"v:{x}"].length == pytest.approx(60.0, rel=1e-12)
+        v_y = np.linalg.norm(motion.velocity(y)[i])
+        assert plan.mu == pytest.approx(v_y / vec[f"v:{y}"].length, rel=1e-12)
+        P = ic.absolute[g.base].point[i]
+        for pin in (p.point for p in g.inner if p.point != x):
+            ratio = np.linalg.norm(motion.position(pin)[i] - P) / np.linalg.norm(motion.position(x)[i] - P)
+            assert vec[f"v:{pin}"].length / vec[f"v:{x}"].length == pytest.approx(ratio, rel=1e-10)

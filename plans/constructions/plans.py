@@ -27,7 +27,7 @@ from ..scene import FRAME
 from ..structure import ComplexGroup
 
 __all__ = ["PlanPoint", "PlanVector", "ConstructionLine", "Plan", "Relation", "relations",
-           "velocity_plan", "acceleration_plan", "EXTENSION_MM"]
+           "velocity_plan", "acceleration_plan", "uncertain_plan", "EXTENSION_MM", "UNCERTAIN_MM"]
 
 #: How far a construction line runs beyond the points it passes through, mm.
 EXTENSION_MM = 12.0
@@ -355,3 +355,52 @@ def _special(b: _Builder, g: ComplexGroup, sym: str) -> None:
     if last.kind == "R" and len(others) == 2:
         for pin in others:
             _rigid(b, Relation("rigid", g.base, last.point, pin, group=f"{g.name}:{last.point}"), sym)
+
+
+#: Length of the arbitrary first vector of Koshel's uncertain-scale plan, mm.
+UNCERTAIN_MM = 60.0
+
+
+def uncertain_plan(motion: Motion, i: int, g: ComplexGroup) -> Plan | None:
+    """Koshel's velocity plan of a class III group in an "uncertain scale", at position i.
+
+    The base link's centre P being known (found on the scheme), the velocity of the pin X of
+    the rod driven from a known moving link is drawn first, of arbitrary length UNCERTAIN_MM,
+    ⊥ PX. The rod's outer pin Y follows from two directions (⊥ XY through x, the known
+    direction of v_Y through p), which fixes the scale K_V = V_Y / py; the base link's other
+    pins follow by the similarity proportion |pc| = |px|·PC/PX, ⊥ PC. Returns None when the
+    construction does not apply (no finite centre of the base link, or no such rod)."""
+    mech = motion.mechanism
+    base = motion.links[g.base].take(np.array([i]))
+    rods = [r for r in g.rods if r.form == "RR" and r.outer.b != FRAME]
+    if not rods or abs(float(base.omega[0])) * mech.size <= 1e-9 * float(np.linalg.norm(base.v[0])):
+        return None
+    rod = rods[0]
+    x_name, y_name, known = rod.inner.point, rod.outer.point, rod.outer.b
+    v_x = motion.velocity(x_name, g.base)[i]
+    b = _Builder(motion, i, float(np.linalg.norm(v_x)) / UNCERTAIN_MM, "velocity")
+    pole = (0.0, 0.0)
+    b.points["p"] = pole
+    centre = motion.position(x_name)[i] + J(v_x) / float(base.omega[0])     # P of the base link
+    x_img = b.image(x_name, g.base)
+    b.line(pole, J(motion.position(x_name)[i] - centre), [x_img], f"v:{x_name}", f"{g.name}:P")
+    b.vector(f"v:{x_name}", pole, x_img, float(np.linalg.norm(v_x)), "absolute")
+    y_img = b.image(y_name, known)
+    v_y = motion.velocity(y_name, known)[i]
+    r = motion.position(y_name)[i] - motion.position(x_name)[i]
+    b.line(x_img, J(r), [y_img], f"v:{y_name}/{x_name}", f"{g.name}:{y_name}")
+    b.line(pole, v_y, [y_img], f"v:{y_name}", f"{g.name}:{y_name}")
+    b.vector(f"v:{y_name}/{x_name}", x_img, y_img, float(np.linalg.norm(v_y - v_x)), "relative")
+    b.vector(f"v:{y_name}", pole, y_img, float(np.linalg.norm(v_y)), "absolute")
+    for pair in g.inner:
+        if pair.kind == "R" and pair.point != x_name:
+            img = b.image(pair.point, g.base)
+            v = motion.velocity(pair.point, g.base)[i]
+            b.line(pole, J(motion.position(pair.point)[i] - centre), [img], f"v:{pair.point}", f"{g.name}:P")
+            b.vector(f"v:{pair.point}", pole, img, float(np.linalg.norm(v)), "absolute")
+    points = tuple(PlanPoint(k, v) for k, v in b.points.items())
+    pins = {p.point for p in g.inner if p.kind == "R"}
+    similar = ((g.base, tuple(p.lower() for p in mech.links[g.base].points)),) \
+        if set(mech.links[g.base].points) <= pins else ()
+    return Plan(kind="velocity", mu=b.mu, pole="p", points=points, vectors=tuple(b.vectors), lines=tuple(b.lines),
+                similar=similar)
