@@ -303,3 +303,25 @@ def test_uncertain_scale_plan(name):
         for pin in (p.point for p in g.inner if p.point != x):
             ratio = np.linalg.norm(motion.position(pin)[i] - P) / np.linalg.norm(motion.position(x)[i] - P)
             assert vec[f"v:{pin}"].length / vec[f"v:{x}"].length == pytest.approx(ratio, rel=1e-10)
+
+
+def test_warning_gives_distance_to_the_limit_position(tmp_path):
+    """Near a singular position the terminal warning says how far it is; the estimate (secant
+    steps on the condition figure) matches the Moore–Spence fold of tests/reference.py."""
+    from plans.render import singular_distance
+    mech, st = _load(_folding_triad())
+    ref = Reference(mech)
+    fold = ref.fold(ref.solve([97.5])[0]).value
+    motion = analyse(mech, st, np.array([fold - 0.3]))
+    assert singular_distance(motion, "III(2-3-4-5)", 0) == pytest.approx(0.3, rel=1e-3)
+    assert abs(analyse(mech, st, np.array([fold - 0.1])).sines["III(2-3-4-5)"][0]) < 1e-2   # warns there
+    data = _folding_triad()
+    lines = [f'{k} = [{v[0]}, {v[1]}]' for k, v in data["points"].items()]
+    links = [f'{k} = {json.dumps(v)}' for k, v in data["links"].items()]
+    scene = tmp_path / "fold.toml"
+    scene.write_text("\n".join([f'title = "fold"', "[points]", *lines, "[links]", *links, "[drive]",
+                                'link = "1"', f"angle = {fold - 0.1!r}", "omega = 10.0",
+                                "[plans]", 'draw = ["velocity"]']), encoding="utf-8")
+    from plans.render import render_scene
+    warnings = render_scene(scene).warnings
+    assert len(warnings) == 1 and "III(2-3-4-5)" in warnings[0] and "about 0.1° from it" in warnings[0]
