@@ -319,7 +319,7 @@ def test_warning_gives_distance_to_the_limit_position(tmp_path):
     lines = [f'{k} = [{v[0]}, {v[1]}]' for k, v in data["points"].items()]
     links = [f'{k} = {json.dumps(v)}' for k, v in data["links"].items()]
     scene = tmp_path / "fold.toml"
-    scene.write_text("\n".join([f'title = "fold"', "[points]", *lines, "[links]", *links, "[drive]",
+    scene.write_text("\n".join(['title = "fold"', "[points]", *lines, "[links]", *links, "[drive]",
                                 'link = "1"', f"angle = {fold - 0.1!r}", "omega = 10.0",
                                 "[plans]", 'draw = ["velocity"]']), encoding="utf-8")
     from plans.render import render_scene

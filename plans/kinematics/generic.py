@@ -29,7 +29,7 @@ import numpy as np
 from ..model import Mechanism
 from .state import J, LinkState
 
-__all__ = ["GroupEquations", "NewtonResult", "newton", "TOLERANCE", "MAX_ITER"]
+__all__ = ["GroupEquations", "NewtonResult", "TOLERANCE", "MAX_ITER"]
 
 #: Newton stops when the largest equation residual is below TOLERANCE·size (m).
 TOLERANCE = 1e-13
@@ -249,7 +249,3 @@ def _with_rates(state: LinkState, order: int) -> LinkState:
         return LinkState(state.theta, state.origin, np.zeros(n), np.zeros((n, 2)))
     return LinkState(state.theta, state.origin, state.omega, state.v, np.zeros(n), np.zeros((n, 2)))
 
-
-def newton(eq: GroupEquations, q: np.ndarray, known: States, **kw) -> NewtonResult:
-    """Functional form of :meth:`GroupEquations.newton`."""
-    return eq.newton(q, known, **kw)
