@@ -36,7 +36,15 @@ def machine() -> dict[str, Any]:
         pass
     return {"cores": os.cpu_count(), "cpu": cpu, "python": platform.python_version(),
             "implementation": platform.python_implementation(), "numpy": np.__version__,
-            "platform": platform.platform()}
+            "platform": platform.platform(), "load_average": _load_average()}
+
+
+def _load_average() -> float | None:
+    """The 1-minute load average (other processes share the cores and slow every timing)."""
+    try:
+        return round(os.getloadavg()[0], 2)
+    except (AttributeError, OSError):
+        return None
 
 
 def _cell(value: Any, fmt: str) -> str:
@@ -78,7 +86,8 @@ def _headlines(sections: dict[str, Section]) -> list[str]:
     t = sections.get("throughput")
     if t and not t.skipped:
         for r in t.rows:
-            verdict = "met" if r[5] >= THROUGHPUT_TARGET else f"NOT met, short by a factor {THROUGHPUT_TARGET / r[5]:.2f}"
+            verdict = "met" if r[5] >= THROUGHPUT_TARGET else \
+                f"NOT met, short by a factor {THROUGHPUT_TARGET / r[5]:.2f}"
             lines.append(f"throughput {r[0]}: vectorised {r[5]:.1f}× the per-angle loop (target ≥ "
                          f"{THROUGHPUT_TARGET:g}×: {verdict})")
     p = sections.get("peer_comparison")
@@ -101,7 +110,7 @@ def run(out_dir: str | Path = "output/bench", *, quick: bool = False, out: TextI
     start = time.perf_counter()
     info = machine()
     print(f"plans bench ({cfg.name}): {info['cores']} cores, {info['cpu']}, Python {info['python']}, "
-          f"NumPy {info['numpy']}", file=out)
+          f"NumPy {info['numpy']}, load average {info['load_average']}", file=out)
     sections: dict[str, Section] = {}
     timings: dict[str, float] = {}
     for fn in SECTIONS:
@@ -122,6 +131,7 @@ def run(out_dir: str | Path = "output/bench", *, quick: bool = False, out: TextI
         "config": cfg.name,
         "machine": info,
         "runtime_s": elapsed,
+        "load_average_end": _load_average(),
         "section_runtime_s": timings,
         "headlines": headlines,
         "charts": [f"{c.name}.svg" for c in charts],
@@ -134,7 +144,8 @@ def run(out_dir: str | Path = "output/bench", *, quick: bool = False, out: TextI
     print("", file=out)
     for h in headlines:
         print(h, file=out)
-    print(f"wrote {len(charts)} charts and bench.json to {target}/ in {elapsed:.1f} s", file=out)
+    print(f"wrote {len(charts)} charts and bench.json to {target}/ in {elapsed:.1f} s (load average "
+          f"{info['load_average']} at the start, {report['load_average_end']} at the end)", file=out)
     return report
 
 

@@ -24,6 +24,8 @@ LEGEND_ROW = 5.0
 FONT = "DejaVu Sans, Arial, sans-serif"
 COLOURS = ("#1f3a93", "#a12a2a", "#2e7d32", "#8e6c00", "#6a1b9a", "#00838f")
 DASHES = ("", "4 1.5", "1.2 1.2", "6 1.5 1.2 1.5")
+#: A series of more points is drawn as a line only.
+MARKERS_UP_TO = 60
 _SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
 
 
@@ -145,7 +147,10 @@ def draw_chart(chart: Chart) -> str:
     ys = [p[1] for pts in keep for p in pts] or [1.0]
     ax = _Axis(xs, chart.log_x, PLOT_LEFT, PLOT_RIGHT)
     ay = _Axis(ys, chart.log_y, PLOT_BOTTOM, PLOT_TOP, zero=chart.y_from_zero)
-    rows = math.ceil(len(chart.series) / 2)
+    # two legend columns unless a label would run into the next column (text ≈ 0.55 × height per glyph)
+    columns = 2 if max((len(s.label) for s in chart.series), default=0) * 0.55 * 2.8 + 12 < \
+        (PLOT_RIGHT - PLOT_LEFT) / 2 else 1
+    rows = math.ceil(len(chart.series) / columns)
     height = LEGEND_TOP + LEGEND_ROW * rows + (5.0 if chart.note or dropped else 0.0) + 2.0
     w, h = _fmt(WIDTH), _fmt(height)
     name = chart.name
@@ -189,13 +194,13 @@ def draw_chart(chart: Chart) -> str:
             if DASHES[k % len(DASHES)]:
                 line.attribs["stroke-dasharray"] = DASHES[k % len(DASHES)]
             g.add(line)
-        if len(paper) <= 60:
+        if len(paper) <= MARKERS_UP_TO:
             marks = dwg.g(id=f"{name}-s{k}-marks", stroke="none")
             for j, (x, y) in enumerate(paper):
                 marks.add(_marker(dwg, k, x, y, colour, f"{name}-s{k}-m{j}"))
             g.add(marks)
         dwg.add(g)
-        col, row = k % 2, k // 2
+        col, row = k % columns, k // columns
         lx, ly = PLOT_LEFT + col * (PLOT_RIGHT - PLOT_LEFT) / 2, LEGEND_TOP + row * LEGEND_ROW
         key = dwg.g(id=f"{name}-key{k}")
         sample = dwg.line(start=(_fmt(lx), _fmt(ly - 1.0)), end=(_fmt(lx + 8), _fmt(ly - 1.0)), stroke=colour,
@@ -203,7 +208,8 @@ def draw_chart(chart: Chart) -> str:
         if DASHES[k % len(DASHES)]:
             sample.attribs["stroke-dasharray"] = DASHES[k % len(DASHES)]
         key.add(sample)
-        key.add(_marker(dwg, k, lx + 4, ly - 1.0, colour, f"{name}-key{k}-mark"))
+        if len(paper) <= MARKERS_UP_TO:
+            key.add(_marker(dwg, k, lx + 4, ly - 1.0, colour, f"{name}-key{k}-mark"))
         key.add(_text(dwg, (lx + 10, ly), s.label, size=2.8, anchor="start", ident=f"{name}-key{k}-text"))
         dwg.add(key)
     caption = chart.note

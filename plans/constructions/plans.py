@@ -279,6 +279,15 @@ def _rigid(b: _Builder, rel: Relation, sym: str) -> None:
     b.line(n_xy, J(r), [head], f"{q}:t", rel.group)
 
 
+def _solved_before(motion: Motion, link: str, group: str) -> bool:
+    """True when ``link`` is known before group ``group`` is solved (driver, frame, or a
+    link of an earlier group)."""
+    for g in motion.structure.groups:
+        if g.name == group:
+            return link not in g.links
+    return True
+
+
 def _slide(b: _Builder, rel: Relation, sym: str, pole) -> None:
     motion, slider, guide = b.motion, rel.link, rel.other
     pr = next(p for p in motion.mechanism.prismatics if p.slider == slider and p.guide == guide)
@@ -287,21 +296,24 @@ def _slide(b: _Builder, rel: Relation, sym: str, pole) -> None:
         moving = slider if guide == FRAME else guide
         b.line(pole, u, [b.image(rel.x, moving)], f"{sym}:{_label(motion, rel.x, moving)}", rel.group)
         return
-    sl, gl = f"{rel.x}{slider}", f"{rel.x}{guide}"
-    tail, head = b.image(rel.x, slider), b.image(rel.x, guide)
-    q = f"{sym}:{gl}/{sl}"
+    # the construction starts from the image already known: the slider's, unless the guide was
+    # solved before the group (a slider of the group on a known turning guide)
+    known, moving = (guide, slider) if _solved_before(motion, guide, rel.group) else (slider, guide)
+    kl, ml = f"{rel.x}{known}", f"{rel.x}{moving}"
+    tail, head = b.image(rel.x, known), b.image(rel.x, moving)
+    q = f"{sym}:{ml}/{kl}"
     if sym == "v":
-        value = float(np.linalg.norm(b.quantity(rel.x, guide) - b.quantity(rel.x, slider)))
+        value = float(np.linalg.norm(b.quantity(rel.x, moving) - b.quantity(rel.x, known)))
         b.vector(q, tail, head, value, "relative")
         b.line(tail, u, [head], q, rel.group)
         return
-    # a_guide = a_slider + a^k + a^r with a^k = 2 ω × (v_guide − v_slider)
-    v_rel = b.quantity_v(rel.x, guide) - b.quantity_v(rel.x, slider)
+    # a_moving = a_known + a^k + a^r with a^k = 2 ω_guide × (v_moving − v_known)
+    v_rel = b.quantity_v(rel.x, moving) - b.quantity_v(rel.x, known)
     coriolis = 2.0 * float(motion.links[guide].omega[b.i]) * J(v_rel)
-    k_label = f"k_{gl}{sl}"
+    k_label = f"k_{ml}{kl}"
     k_xy = tuple(float(c) for c in np.add(tail, coriolis / b.mu))
     b.points[k_label] = k_xy
-    a_rel = b.quantity(rel.x, guide) - b.quantity(rel.x, slider) - coriolis
+    a_rel = b.quantity(rel.x, moving) - b.quantity(rel.x, known) - coriolis
     b.vector(f"{q}:cor", tail, k_xy, float(np.linalg.norm(coriolis)), "coriolis")
     b.vector(f"{q}:r", k_xy, head, float(np.linalg.norm(a_rel)), "sliding")
     b.line(k_xy, u, [head], f"{q}:r", rel.group)

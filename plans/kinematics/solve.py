@@ -108,7 +108,10 @@ def _grid(mech: Mechanism, values: np.ndarray) -> tuple[np.ndarray, list[np.ndar
     down = down[down < start]
     grid = np.concatenate([[start], up, down])
     sweeps = [np.arange(0, 1 + len(up)), np.concatenate([[0], np.arange(1 + len(up), len(grid))])]
-    index = np.array([int(np.flatnonzero(grid == v)[0]) for v in values])
+    first: dict[float, int] = {}
+    for k, g in enumerate(grid.tolist()):
+        first.setdefault(g, k)
+    index = np.array([first[v] for v in values.tolist()], dtype=int)
     return grid, sweeps, index
 
 
@@ -283,12 +286,16 @@ def _branch(mech: Mechanism, links: tuple[str, str], options: list, sweeps: list
     penalty = [np.where(o.valid, 0.0, np.inf) for o in options]
     choice = np.zeros(n, dtype=int)
     first = int(np.argmin([np.sum((s[0] - sketch) ** 2) + pen[0] for s, pen in zip(sig, penalty)]))
+    k = len(options)
     for sweep in sweeps:
-        prev = sig[first][sweep[0]]
-        choice[sweep[0]] = first
-        for i in sweep[1:]:
-            d = [float(np.sum((s[i] - prev) ** 2)) + pen[i] for s, pen in zip(sig, penalty)]
-            c = int(np.argmin(d))
-            choice[i] = c
-            prev = sig[c][i]
+        # distance of every option at each step from every option at the step before, at once;
+        # the walk then only looks numbers up
+        step = [[(np.sum((sig[b][sweep[1:]] - sig[a][sweep[:-1]]) ** 2, axis=1)
+                  + penalty[b][sweep[1:]]).tolist() for b in range(k)] for a in range(k)]
+        c = first
+        choice[sweep[0]] = c
+        for j in range(len(sweep) - 1):
+            row = step[c]
+            c = min(range(k), key=lambda b: row[b][j])
+            choice[sweep[j + 1]] = c
     return choice
