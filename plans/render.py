@@ -20,7 +20,7 @@ from .constructions.centres import centres_sheet
 from .drawing import Style, draw_centres, draw_plan, draw_scheme
 from .errors import PlansError
 from .kinematics import WARN_SIN, Motion, analyse, special
-from .kinematics.centres import centres
+from .kinematics.centres import Centres, centres
 from .model import build_mechanism
 from .scene import Scene, read_scene
 from .structure import ComplexGroup, analyse_structure
@@ -78,13 +78,14 @@ def _position_label(motion: Motion, i: int) -> str:
         f"s = {v:g} m, v = {d.speed:g} m/s, a = {d.rate:g} m/s²"
 
 
-def report(scene: Scene, motion: Motion, scales: Scales, solutions: dict | None = None) -> dict:
+def report(scene: Scene, motion: Motion, scales: Scales, solutions: dict | None = None,
+           ic: Centres | None = None) -> dict:
     """The JSON report: structure and, per position, points, links, scales, conditioning,
     instantaneous centres and the special points of class III groups (SI)."""
     mech = motion.mechanism
     key = "angle" if mech.drive.kind == "rotary" else "displacement"
     positions = []
-    ic = centres(motion) if motion.order >= 1 else None
+    ic = centres(motion) if ic is None and motion.order >= 1 else ic
     solutions = triads(motion) if solutions is None else solutions
     special_pts = {g.name: triad.points for g, triad in solutions.items()}
     r = {p: motion.position(p) for p in mech.sketch}
@@ -203,7 +204,7 @@ def render_scene(path: str | Path, style: Style = Style()) -> Rendered:
                              f"by {worst:.2e} (relative) — please report this scene")
     files: dict[str, str] = {}
     warnings = []
-    ic = None
+    ic = centres(motion) if motion.order >= 1 else None
     formula = motion.structure.formula
     for i in range(len(motion)):
         sfx = _suffix(motion, i)
@@ -220,7 +221,6 @@ def render_scene(path: str | Path, style: Style = Style()) -> Rendered:
             files[f"{stem}-scheme{sfx}.svg"] = draw_scheme(sch, title=scene.title, subtitle=f"Scheme, {label}",
                                                            formula=formula, ident=f"scheme{sfx or ''}", style=style)
         if "centres" in scene.draw:
-            ic = ic or centres(motion)
             sheet = centres_sheet(motion, ic, i)
             files[f"{stem}-centres{sfx}.svg"] = draw_centres(
                 sheet, title=f"{scene.title}: instantaneous centres", subtitle=label, formula=formula,
@@ -251,7 +251,7 @@ def render_scene(path: str | Path, style: Style = Style()) -> Rendered:
                                  f"{failures[0]} (please report this scene)")
             files[f"{stem}-{kind}{sfx}.svg"] = draw_plan(plan, title=f"{scene.title}: {kind} plan",
                                                          subtitle=label, ident=f"{kind}{sfx or ''}", style=style)
-    files[f"{stem}.json"] = json.dumps(report(scene, motion, scales, solutions), indent=1, ensure_ascii=False) + "\n"
+    files[f"{stem}.json"] = json.dumps(report(scene, motion, scales, solutions, ic), indent=1, ensure_ascii=False) + "\n"
     return Rendered(stem, files, motion, scales, tuple(warnings))
 
 
