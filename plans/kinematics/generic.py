@@ -170,10 +170,14 @@ class GroupEquations:
         """A with angular columns ÷size and angle rows ×size (every entry dimensionless)."""
         a = a.copy()
         a[:, :, 2::3] /= self.size
+        return self._scale_rows(a)
+
+    def _scale_rows(self, m: np.ndarray) -> np.ndarray:
+        """``m`` with the rows of angle equations (prismatic pairs) ×size, in place."""
         for k, pair in enumerate(self.pairs):
             if pair.kind == "P":
-                a[:, 2 * k, :] *= self.size
-        return a
+                m[:, 2 * k] *= self.size
+        return m
 
     def condition(self, states: States) -> np.ndarray:
         """sign(det A)·σ_min/σ_max of the scaled Jacobian at every position (N,)."""
@@ -184,29 +188,27 @@ class GroupEquations:
     # -- solves --------------------------------------------------------------------------
     def _solve(self, states: States, rhs: np.ndarray) -> np.ndarray:
         a = self._scaled(self.jacobian(states))
-        rhs = rhs.copy()
-        for k, pair in enumerate(self.pairs):
-            if pair.kind == "P":
-                rhs[:, 2 * k] *= self.size
+        rhs = self._scale_rows(rhs.copy())
         x = np.linalg.solve(a, -rhs[..., None])[..., 0]
         x[:, 2::3] /= self.size
         return x
 
     def velocities(self, states: dict[str, LinkState]) -> None:
         """Solve the group's ω and v_o at every position (in place in ``states``)."""
-        zero = {n: _with_rates(states[n], 1) for n in self.links}
-        x = self._solve({**states, **zero}, self.velocity_terms({**states, **zero}))
-        for name, c in self.col.items():
-            s = states[name]
-            states[name] = s.with_velocity(x[:, c + 2], s.origin, x[:, c:c + 2])
+        self._rates(states, 1)
 
     def accelerations(self, states: dict[str, LinkState]) -> None:
         """Solve the group's ε and a_o at every position (in place in ``states``)."""
-        zero = {n: _with_rates(states[n], 2) for n in self.links}
-        x = self._solve({**states, **zero}, self.acceleration_terms({**states, **zero}))
+        self._rates(states, 2)
+
+    def _rates(self, states: dict[str, LinkState], order: int) -> None:
+        zero = {**states, **{n: _with_rates(states[n], order) for n in self.links}}
+        terms = self.velocity_terms(zero) if order == 1 else self.acceleration_terms(zero)
+        x = self._solve(zero, terms)
         for name, c in self.col.items():
             s = states[name]
-            states[name] = s.with_acceleration(x[:, c + 2], s.origin, x[:, c:c + 2])
+            put = s.with_velocity if order == 1 else s.with_acceleration
+            states[name] = put(x[:, c + 2], s.origin, x[:, c:c + 2])
 
     def newton(self, q: np.ndarray, known: States, *, tol: float = TOLERANCE, maxiter: int = MAX_ITER,
                polish: bool = True) -> NewtonResult:
@@ -219,10 +221,7 @@ class GroupEquations:
         polishing = False
         for it in range(maxiter + 2):
             st = self.states(q, known)
-            phi = self.residual(st)
-            for k, pair in enumerate(self.pairs):
-                if pair.kind == "P":
-                    phi[:, 2 * k] *= self.size
+            phi = self._scale_rows(self.residual(st))
             res = float(np.max(np.abs(phi))) if phi.size else 0.0
             if not np.isfinite(res):
                 return NewtonResult(q, it, res, False)
