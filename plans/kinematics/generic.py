@@ -219,16 +219,22 @@ class GroupEquations:
         limit = tol * self.size
         res = np.inf
         polishing = False
+        before: tuple[np.ndarray, float] | None = None
         for it in range(maxiter + 2):
             st = self.states(q, known)
             phi = self._scale_rows(self.residual(st))
             res = float(np.max(np.abs(phi))) if phi.size else 0.0
+            if polishing and before is not None and not res <= before[1]:
+                # the polish step made things worse (a singular Jacobian: the step is noise);
+                # keep the converged position it started from
+                return NewtonResult(before[0], it, before[1], True)
             if not np.isfinite(res):
                 return NewtonResult(q, it, res, False)
             if polishing or (res <= limit and not polish):
                 return NewtonResult(q, it, res, res <= limit)
             if res <= limit:
                 polishing = True
+                before = (q.copy(), res)
             elif it >= maxiter:
                 break
             a = self._scaled(self.jacobian(st))
