@@ -22,6 +22,10 @@ __all__ = ["Link", "Revolute", "Prismatic", "DriveSpec", "Mechanism", "build_mec
 #: Relative tolerance for lengths that must agree (over-determined link shapes), and for
 #: deciding that three points of a link are collinear.
 LENGTH_RTOL = 1e-9
+#: Sides that add up to within this (relative) are collinear: decimal lengths such as 0.6 =
+#: 0.4 + 0.2 miss exactly by a rounding, which would otherwise lift the point sqrt(eps) ~ 1e-8
+#: off the line; data given to 16 digits cannot tell a triangle that flat from a line.
+COLLINEAR_RTOL = 16 * np.finfo(float).eps
 
 
 @dataclass(frozen=True)
@@ -137,33 +141,49 @@ def build_mechanism(scene: Scene) -> Mechanism:
 
 def _shape(name: str, pts: tuple[str, ...], sketch: Mapping[str, np.ndarray],
            lengths: Mapping[frozenset[str], float]) -> dict[str, np.ndarray]:
-    """Local coordinates of a link's points: trilaterate from the first two points with the
-    given lengths (else the sketch distances), keeping the sketch's side of each point."""
+    """Local coordinates of a link's points (m).
+
+    With no ``[lengths]`` on the link the sketch itself is the shape, to the bit. Otherwise
+    every point is trilaterated from the first two with the given lengths (else the sketch
+    distances), keeping the sketch's side; the height above the line p0p1 comes from the
+    triangle's area by Kahan's cancellation-free Heron formula, so a point on the line (a
+    rod's midpoint) stays on it exactly instead of sqrt(rounding residue) ~ 1e-8 off it."""
     key = f"links.{name}"
+    if len(pts) >= 2 and sketch[pts[0]].tolist() == sketch[pts[1]].tolist():
+        raise SceneError(f"points {pts[0]} and {pts[1]} coincide in the sketch; a link's points must be distinct",
+                         key=key)
+    if not any(a in pts and b in pts for a, b in map(tuple, lengths)):
+        return {p: sketch[p].copy() for p in pts}
 
     def dist(a: str, b: str) -> float:
         return lengths.get(frozenset((a, b)), float(np.linalg.norm(sketch[a] - sketch[b])))
 
     local = {pts[0]: sketch[pts[0]].copy()}
-    if len(pts) == 1:
-        return local
     p0, p1 = pts[0], pts[1]
     axis = sketch[p1] - sketch[p0]
-    if np.linalg.norm(axis) == 0.0:
-        raise SceneError(f"points {p0} and {p1} coincide in the sketch; a link's points must be distinct", key=key)
     ex = axis / np.linalg.norm(axis)
     ey = np.array([-ex[1], ex[0]])
     d01 = dist(p0, p1)
     local[p1] = local[p0] + d01 * ex
     for pk in pts[2:]:
+        rel = sketch[pk] - sketch[p0]
+        given0, given1 = frozenset((p0, pk)) in lengths, frozenset((p1, pk)) in lengths
+        if not (given0 or given1):        # nothing given: where the sketch puts it, from p0
+            local[pk] = local[p0] + float(rel @ ex) * ex + float(rel @ ey) * ey
+            continue
+        if given0 != given1:              # one distance given: at that distance, as sketched
+            near = p0 if given0 else p1
+            arm = sketch[pk] - sketch[near]
+            arm_local = float(arm @ ex) * ex + float(arm @ ey) * ey
+            local[pk] = local[near] + dist(near, pk) * arm_local / np.linalg.norm(arm_local)
+            continue
         d0, d1 = dist(p0, pk), dist(p1, pk)
-        x = (d0 * d0 - d1 * d1 + d01 * d01) / (2.0 * d01)
-        h2 = d0 * d0 - x * x
-        if h2 < -LENGTH_RTOL * d0 * d0 * 10:
+        h = _height(d01, d0, d1)
+        if h is None:
             raise SceneError(f"lengths {p0}{pk} = {d0:g}, {p1}{pk} = {d1:g} and {p0}{p1} = {d01:g} cannot form a "
                              "triangle; correct [lengths] or the sketch", key=key)
-        side = float(axis[0] * (sketch[pk] - sketch[p0])[1] - axis[1] * (sketch[pk] - sketch[p0])[0])
-        h = math.sqrt(max(h2, 0.0))
+        x = (d0 * d0 - d1 * d1 + d01 * d01) / (2.0 * d01)
+        side = float(axis[0] * rel[1] - axis[1] * rel[0])
         local[pk] = local[p0] + x * ex + math.copysign(h, side) * ey
     for pair, value in lengths.items():
         a, b = tuple(pair)
@@ -173,6 +193,20 @@ def _shape(name: str, pts: tuple[str, ...], sketch: Mapping[str, np.ndarray],
                 raise SceneError(f"length {a}{b} = {value:g} m contradicts the link's other lengths "
                                  f"(they give {got:.6g} m); a link's shape must be consistently determined", key=key)
     return local
+
+
+def _height(base: float, d0: float, d1: float) -> float | None:
+    """Height (m) over side ``base`` of the triangle with sides base, d0, d1, from its area by
+    Kahan's formula; 0 when the sides add up to rounding (collinear points); None when they
+    violate the triangle inequality by more than LENGTH_RTOL."""
+    a, b, c = sorted((base, d0, d1), reverse=True)
+    slack = c - (a - b)            # ≥ 0 for a triangle; exact when the sides are
+    if slack < -LENGTH_RTOL * a:
+        return None
+    if slack <= COLLINEAR_RTOL * a:
+        return 0.0
+    product = (a + (b + c)) * slack * (c + (a - b)) * (a + (b - c))
+    return 0.5 * math.sqrt(max(product, 0.0)) / base
 
 
 def _prismatic(s: Slider, links: Mapping[str, Link], sketch: Mapping[str, np.ndarray]) -> Prismatic:
