@@ -28,9 +28,10 @@ LENGTH_RTOL = 1e-9
 COLLINEAR_RTOL = 16 * np.finfo(float).eps
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class Link:
-    """A rigid link: its point names and their local coordinates (metres)."""
+    """A rigid link: its point names and their local coordinates (metres); compared and
+    hashed by identity (it holds arrays)."""
 
     name: str
     points: tuple[str, ...]
@@ -53,9 +54,12 @@ class Revolute:
         return self.b if link == self.a else self.a
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class Prismatic:
     """A prismatic pair: ``slider`` translates along a line fixed in ``guide``.
+
+    Compared and hashed by identity (it holds arrays): one object per ``[[sliders]]`` entry,
+    so groups and pairs that hold it can be dictionary keys.
 
     ``anchor`` holds, for each of the two links, a local point on the common line;
     ``direction`` is the line's local unit direction (the same in both links, whose

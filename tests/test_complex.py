@@ -325,3 +325,56 @@ def test_warning_gives_distance_to_the_limit_position(tmp_path):
     from plans.render import render_scene
     warnings = render_scene(scene).warnings
     assert len(warnings) == 1 and "III(2-3-4-5)" in warnings[0] and "about 0.1° from it" in warnings[0]
+
+
+def _sliding_rod_triad() -> dict:
+    """Koshel's variant 1 with rod 4 turned into a block sliding on a frame guide (horizontal
+    through C): a class III group of form RR-PR-RR (its axis is the normal to the guide at C)."""
+    pts = {"O": [0.0, 0.0], "A": [0.035355339, 0.035355339], "B": [0.297, 0.0], "C": [0.177, 0.124],
+           "D": [0.473, 0.104], "N": [0.394, 0.33]}
+    return {"title": "triad with a sliding rod", "points": pts,
+            "links": {"0": ["O", "N"], "1": ["O", "A"], "2": ["A", "B"], "3": ["N", "D"], "4": ["C"],
+                      "5": ["B", "C", "D"]},
+            "sliders": [{"link": "4", "on": "0", "through": "C", "angle": 0.0}],
+            "drive": {"link": "1", "angle": [45.0], "omega": 10.0, "epsilon": 3.0}}
+
+
+def test_triad_with_a_sliding_rod_matches_the_reference_and_renders(tmp_path):
+    """Form RR-PR-RR: once a TypeError (a group holding the prismatic pair's dict was hashed)."""
+    data = _sliding_rod_triad()
+    mech, st = _load(data)
+    assert [g.form for g in st.groups if isinstance(g, ComplexGroup)] == ["RR-PR-RR"]
+    values = np.arange(12) * 30.0 + 5.0
+    motion = analyse(mech, st, values)
+    triad = special.solve_triad(st.groups[-1], mech, motion.links, order=2)
+    for i, state in enumerate(Reference(mech).solve(values)):
+        for link in mech.moving:
+            for p in mech.links[link].points:
+                for got, want in ((motion.velocity(p, link)[i], state.velocity(p, link)),
+                                  (motion.acceleration(p, link)[i], state.acceleration(p, link))):
+                    assert np.linalg.norm(got - want) <= 1e-9 * max(1.0, np.linalg.norm(want))
+        for link, s in triad.links.items():
+            assert abs(s.omega[i] - motion.links[link].omega[i]) <= 1e-9 * abs(mech.drive.speed)
+            assert abs(s.epsilon[i] - motion.links[link].epsilon[i]) <= 1e-8 * mech.drive.speed ** 2
+    data["drive"]["angle"] = values.tolist()
+    data["plans"] = {"draw": ["scheme", "velocity", "acceleration", "centres"]}
+    scene = tmp_path / "sliding_rod.toml"
+    scene.write_text(_toml(data), encoding="utf-8")
+    out = tmp_path / "out"
+    assert main(["render", str(scene), "-o", str(out), "-q"]) == 0
+    svgs = sorted(str(p) for p in out.glob("*.svg"))
+    assert len(svgs) == 12 * 5          # scheme, velocity, acceleration, centres and Koshel's sheet
+    assert main(["check", *svgs]) == 0
+
+
+def _toml(data: dict) -> str:
+    """A scene dict as TOML text (strings, numbers, lists, [[sliders]])."""
+    lines = [f"title = {json.dumps(data.get('title', 'scene'))}"]
+    for table in ("points", "links", "drive", "plans"):
+        if table in data:
+            lines.append(f"[{table}]")
+            lines += [f"{json.dumps(k)} = {json.dumps(v)}" for k, v in data[table].items()]
+    for s in data.get("sliders", []):
+        lines.append("[[sliders]]")
+        lines += [f"{k} = {json.dumps(v)}" for k, v in s.items()]
+    return "\n".join(lines) + "\n"
