@@ -231,9 +231,27 @@ def _prismatic(s: Slider, links: Mapping[str, Link], sketch: Mapping[str, np.nda
     for name in (s.link, s.on):
         local = links[name].local
         anchor[name] = next((local[t] for t in s.through if t in local), sketch[p]).copy()
-    # the pair is named on plans by the slider's point on the line (else the slider's first point)
-    label = next((t for t in s.through if t in links[s.link].local), links[s.link].points[0])
-    return Prismatic(slider=s.link, guide=s.on, anchor=anchor, direction=direction, label=label, index=s.index)
+    return Prismatic(slider=s.link, guide=s.on, anchor=anchor, direction=direction,
+                     label=_pair_label(s, links, sketch, anchor[s.on], direction), index=s.index)
+
+
+def _pair_label(s: Slider, links: Mapping[str, Link], sketch: Mapping[str, np.ndarray], on_line: np.ndarray,
+                direction: np.ndarray) -> str:
+    """The point that names a prismatic pair on plans and where its block is drawn: the
+    slider's point on the line (else its first point) — unless the guide is the block (a
+    moving link with fewer points than the slider: a lever sliding in a block pinned to a
+    crank), then the block's point on the line that a third link also carries (the pin)."""
+    slider, guide = links[s.link], links[s.on]
+    default = next((t for t in s.through if t in slider.local), slider.points[0])
+    if s.on == FRAME or len(guide.points) >= len(slider.points):
+        return default
+    span = max(float(np.linalg.norm(x - on_line)) for x in sketch.values()) or 1.0
+    for p in guide.points:
+        d = sketch[p] - on_line
+        on = abs(float(d[0] * direction[1] - d[1] * direction[0])) <= 1e-9 * span
+        if on and any(p in link.points for name, link in links.items() if name not in (s.link, s.on)):
+            return p
+    return default
 
 
 def _drive(scene: Scene, links: Mapping[str, Link], prismatics: tuple[Prismatic, ...],

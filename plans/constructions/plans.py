@@ -296,9 +296,15 @@ def _slide(b: _Builder, rel: Relation, sym: str, pole) -> None:
         moving = slider if guide == FRAME else guide
         b.line(pole, u, [b.image(rel.x, moving)], f"{sym}:{_label(motion, rel.x, moving)}", rel.group)
         return
-    # the construction starts from the image already known: the slider's, unless the guide was
-    # solved before the group (a slider of the group on a known turning guide)
-    known, moving = (guide, slider) if _solved_before(motion, guide, rel.group) else (slider, guide)
+    # the construction starts from the image already known: the guide's when it was solved
+    # before the group (a slider of the group on a known turning guide), the slider's when it
+    # was; within the group, that of the link carrying the pair's point (the block pinned there)
+    if _solved_before(motion, guide, rel.group):
+        known, moving = guide, slider
+    elif _solved_before(motion, slider, rel.group) or rel.x in motion.mechanism.links[slider].local:
+        known, moving = slider, guide
+    else:
+        known, moving = guide, slider
     kl, ml = f"{rel.x}{known}", f"{rel.x}{moving}"
     tail, head = b.image(rel.x, known), b.image(rel.x, moving)
     q = f"{sym}:{ml}/{kl}"
