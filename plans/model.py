@@ -240,7 +240,7 @@ def _pair_label(s: Slider, links: Mapping[str, Link], sketch: Mapping[str, np.nd
     """The point that names a prismatic pair on plans and where its block is drawn: the
     slider's point on the line (else its first point) — unless the guide is the block (a
     moving link with fewer points than the slider: a lever sliding in a block pinned to a
-    crank), then the block's point on the line that a third link also carries (the pin)."""
+    crank), then the block's point on the line where a third moving link is pinned to it."""
     slider, guide = links[s.link], links[s.on]
     default = next((t for t in s.through if t in slider.local), slider.points[0])
     if s.on == FRAME or len(guide.points) >= len(slider.points):
@@ -249,7 +249,7 @@ def _pair_label(s: Slider, links: Mapping[str, Link], sketch: Mapping[str, np.nd
     for p in guide.points:
         d = sketch[p] - on_line
         on = abs(float(d[0] * direction[1] - d[1] * direction[0])) <= 1e-9 * span
-        if on and any(p in link.points for name, link in links.items() if name not in (s.link, s.on)):
+        if on and any(p in link.points for name, link in links.items() if name not in (s.link, s.on, FRAME)):
             return p
     return default
 

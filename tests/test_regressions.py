@@ -93,3 +93,85 @@ def test_whitworth_images_across_the_pivot_lie_across_the_pole():
             qa = np.linalg.norm(motion.position("A")[i] - motion.position("Q")[i])
             assert float(c @ a3) < 0
             assert np.linalg.norm(c) / np.linalg.norm(a3) == pytest.approx(qc / qa, rel=1e-9)
+
+
+# --- point names that look like plan labels ----------------------------------------------------
+
+def renamed(data: dict, names: dict[str, str]) -> dict:
+    """The scene with its points renamed (lengths written P-Q)."""
+    out = {k: v for k, v in data.items() if k not in ("points", "links", "sliders", "lengths")}
+    out["points"] = {names.get(p, p): xy for p, xy in data["points"].items()}
+    out["links"] = {k: [names.get(p, p) for p in pts] for k, pts in data["links"].items()}
+    out["sliders"] = [s | {"through": [names.get(p, p) for p in ([s["through"]] if isinstance(s["through"], str)
+                                                                 else s["through"])]}
+                      for s in data.get("sliders", [])]
+    if "lengths" in data:
+        pts = sorted(data["points"], key=len, reverse=True)
+        lengths = {}
+        for key, value in data["lengths"].items():
+            a = next(p for p in pts if key.startswith(p) and key[len(p):] in data["points"])
+            lengths[f"{names.get(a, a)}-{names.get(key[len(a):], key[len(a):])}"] = value
+        out["lengths"] = lengths
+    return out
+
+
+def oscillating_cylinder() -> dict:
+    """Crank OA 0.1 m; the piston rod 2 (A, with its piston head P) slides in cylinder 3
+    pivoted on the frame at C, 0.3 m from O (RPR)."""
+    a = [0.1 * math.cos(math.radians(40.0)), 0.1 * math.sin(math.radians(40.0))]
+    c = [0.3, 0.0]
+    u = np.subtract(c, a) / np.linalg.norm(np.subtract(c, a))
+    p = [a[0] + 0.12 * u[0], a[1] + 0.12 * u[1]]
+    return {"title": "Oscillating cylinder", "points": {"O": [0.0, 0.0], "A": a, "P": p, "C": c},
+            "links": {"0": ["O", "C"], "1": ["O", "A"], "2": ["A", "P"], "3": ["C"]},
+            "sliders": [{"link": "2", "on": "3", "through": ["A", "P"]}],
+            "drive": {"link": "1", "angle": TWELVE, "omega": 8.0, "epsilon": 5.0},
+            "plans": {"draw": ["scheme", "velocity", "acceleration", "centres"]}}
+
+
+def _example(stem: str) -> dict:
+    import tomllib
+    from conftest import EXAMPLES
+
+    data = tomllib.loads(next(p for p in EXAMPLES if p.stem == stem).read_text(encoding="utf-8"))
+    data["drive"]["angle"] = TWELVE
+    data["plans"] = {"draw": ["scheme", "velocity", "acceleration", "centres"]}
+    return data
+
+
+CLASHES = {
+    "oscillating cylinder, P": (oscillating_cylinder, {}),
+    "oscillating cylinder, π Π p": (oscillating_cylinder, {"O": "π", "A": "Π", "C": "p"}),
+    "four-bar, p a A S1": (lambda: _example("four_bar"), {"O": "p", "A": "a", "B": "A", "M": "S1"}),
+    "quick-return, P k_D3D2 n_ED": (lambda: _example("quick_return"), {"C": "P", "A": "k_A3A2", "E": "n_ED"}),
+    "Koshel's triad, S1 S2 S3 P": (lambda: _example("koshel_variant1"),
+                                   {"O": "P", "K": "S1", "N": "S2", "D": "S3", "C": "p"}),
+}
+
+
+@pytest.mark.parametrize("case", sorted(CLASHES))
+def test_point_names_that_look_like_plan_labels(tmp_path, case):
+    """A point named like a pole (p, π, P, Π), a special point (S1) or a component's end
+    (n_…, k_…) is just a point: every sheet passes `plans check`, and the values equal those
+    of the same scene with plain names."""
+    build, names = CLASHES[case]
+    plain = build()
+    if not names:                     # the scene already has its clash: rename it away
+        names = {"P": "H"}
+        plain = renamed(plain, names)
+        names = {"H": "P"}
+    base = render_and_check(tmp_path, plain, "plain")
+    clash = render_and_check(tmp_path, renamed(plain, names), "clash")
+    for p1, p2 in zip(base["positions"], clash["positions"]):
+        for point, entry in p1["points"].items():
+            assert p2["points"][names.get(point, point)] == entry
+
+
+def test_pole_label_stays_and_the_clashing_image_is_primed():
+    mech = build_mechanism(parse_scene(oscillating_cylinder()))
+    motion = analyse(mech, analyse_structure(mech))
+    plan = velocity_plan(motion, 0, 0.01)
+    labels = [p.label for p in plan.points]
+    assert plan.pole == "p" and plan.point("p") == (0.0, 0.0) and len(set(labels)) == len(labels)
+    v_p = motion.velocity("P")[0] / 0.01
+    assert plan.point("p′") == pytest.approx(tuple(v_p), abs=1e-12)

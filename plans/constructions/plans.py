@@ -168,13 +168,48 @@ def _label(motion: Motion, point: str, link: str) -> str:
     return point if point in motion.mechanism.links[link].local else f"{point}{link}"
 
 
+#: Marks a plan label that would otherwise repeat another (a point named P beside the pole p).
+PRIME = "′"
+
+
 class _Builder:
+    """Collects a plan's images, vectors and lines. Images are keyed by what they are (the
+    pole, the image of point X of link L, an n or k end), never by their printed label, so a
+    point named ``P`` or ``n_BA`` cannot land on the pole or on a component's end; labels are
+    made unique only when the plan is finished (:meth:`plan_points`)."""
+
     def __init__(self, motion: Motion, i: int, mu: float, kind: str):
         self.motion, self.i, self.mu, self.kind = motion, i, mu, kind
-        self.points: dict[str, tuple[float, float]] = {}
+        self.points: dict[tuple, tuple[float, float]] = {}
+        self.names: dict[tuple, str] = {}
         self.vectors: list[PlanVector] = []
         self.lines: list[ConstructionLine] = []
         self.extra: dict[str, np.ndarray] = {}   # constructed points (special points S1…): world position
+
+    def put(self, key: tuple, label: str, xy) -> tuple[float, float]:
+        """Record an image (first one wins) under ``key``, printed as ``label``."""
+        if key not in self.points:
+            self.points[key] = tuple(float(c) for c in xy)
+            self.names[key] = label
+        return self.points[key]
+
+    def image_key(self, point: str, link: str) -> tuple:
+        if point in self.extra:
+            return ("img", point, "")
+        return ("img", point, "" if point in self.motion.mechanism.links[link].local else link)
+
+    def plan_points(self) -> tuple[tuple[PlanPoint, ...], dict[tuple, str]]:
+        """The images with unique labels (a repeat gets primes, in the order drawn) and the
+        label each key got."""
+        taken: set[str] = set()
+        final: dict[tuple, str] = {}
+        for key in self.points:
+            label = self.names[key]
+            while label in taken:
+                label += PRIME
+            taken.add(label)
+            final[key] = label
+        return tuple(PlanPoint(final[k], xy) for k, xy in self.points.items()), final
 
     def world(self, point: str) -> np.ndarray:
         if point in self.extra:
@@ -197,10 +232,10 @@ class _Builder:
         return state.velocity(self.world(point)[None, :])[0]
 
     def image(self, point: str, link: str) -> tuple[float, float]:
-        label = self.label(point, link).lower()
-        xy = tuple(float(c) for c in self.quantity(point, link) / self.mu)
-        self.points.setdefault(label, xy)
-        return self.points[label]
+        key = self.image_key(point, link)
+        if key in self.points:
+            return self.points[key]
+        return self.put(key, self.label(point, link).lower(), self.quantity(point, link) / self.mu)
 
     def vector(self, quantity: str, tail, head, value: float, kind: str) -> None:
         if np.hypot(head[0] - tail[0], head[1] - tail[1]) > MIN_DRAWN_MM:
@@ -229,8 +264,7 @@ def _plan(motion: Motion, i: int, mu: float, kind: str) -> Plan:
     b = _Builder(motion, i, mu, kind)
     mech = motion.mechanism
     sym = "v" if kind == "velocity" else "a"
-    pole = (0.0, 0.0)
-    b.points["p" if kind == "velocity" else "π"] = pole
+    pole = b.put(("pole",), "p" if kind == "velocity" else "π", (0.0, 0.0))
     for rel in relations(motion):
         if rel.kind == "rigid":
             _rigid(b, rel, sym)
@@ -245,10 +279,10 @@ def _plan(motion: Motion, i: int, mu: float, kind: str) -> Plan:
             continue
         head = b.image(name, link)
         b.vector(f"{sym}:{name}", pole, head, float(np.linalg.norm(b.quantity(name, link))), "absolute")
-    similar = tuple((link, tuple(p.lower() for p in mech.links[link].points))
+    points, final = b.plan_points()
+    similar = tuple((link, tuple(final[b.image_key(p, link)] for p in mech.links[link].points))
                     for link in mech.moving if len(mech.links[link].points) >= 3)
-    points = tuple(PlanPoint(k, v) for k, v in b.points.items())
-    return Plan(kind=kind, mu=mu, pole="p" if kind == "velocity" else "π", points=points,
+    return Plan(kind=kind, mu=mu, pole=final[("pole",)], points=points,
                 vectors=tuple(b.vectors), lines=tuple(b.lines), similar=similar)
 
 
@@ -271,9 +305,7 @@ def _rigid(b: _Builder, rel: Relation, sym: str) -> None:
     normal = -w * w * r
     if rel.group == "I" and e == 0.0:
         return  # a crank turning uniformly: πa is the normal component itself
-    n_label = f"n_{xl}{yl}"
-    n_xy = tuple(float(c) for c in np.add(tail, normal / b.mu))
-    b.points[n_label] = n_xy
+    n_xy = b.put(("n", xl, yl), f"n_{xl}{yl}", np.add(tail, normal / b.mu))
     b.vector(f"{q}:n", tail, n_xy, float(np.linalg.norm(normal)), "normal")
     b.vector(f"{q}:t", n_xy, head, abs(e) * float(np.linalg.norm(r)), "tangential")
     b.line(n_xy, J(r), [head], f"{q}:t", rel.group)
@@ -316,9 +348,7 @@ def _slide(b: _Builder, rel: Relation, sym: str, pole) -> None:
     # a_moving = a_known + a^k + a^r with a^k = 2 ω_guide × (v_moving − v_known)
     v_rel = b.quantity_v(rel.x, moving) - b.quantity_v(rel.x, known)
     coriolis = 2.0 * float(motion.links[guide].omega[b.i]) * J(v_rel)
-    k_label = f"k_{ml}{kl}"
-    k_xy = tuple(float(c) for c in np.add(tail, coriolis / b.mu))
-    b.points[k_label] = k_xy
+    k_xy = b.put(("k", ml, kl), f"k_{ml}{kl}", np.add(tail, coriolis / b.mu))
     a_rel = b.quantity(rel.x, moving) - b.quantity(rel.x, known) - coriolis
     b.vector(f"{q}:cor", tail, k_xy, float(np.linalg.norm(coriolis)), "coriolis")
     b.vector(f"{q}:r", k_xy, head, float(np.linalg.norm(a_rel)), "sliding")
@@ -338,37 +368,37 @@ def _special(b: _Builder, g: ComplexGroup, sym: str) -> None:
     pts = special.special_points(g, mech, states)
     skip = int(special.pick(pts)[0])
     used = [p for k, p in enumerate(pts) if k != skip]
+    name = {}
+    for p in used:   # S1, S2, S3 — primed if the scene has points of those names
+        name[p.name] = p.name + PRIME * next(k for k in range(4) if p.name + PRIME * k not in mech.sketch)
+        b.extra[name[p.name]] = p.position[0]
     for p in used:
-        b.extra[p.name] = p.position[0]
-    for p in used:
-        s_img = b.image(p.name, g.base)
+        s_img = b.image(name[p.name], g.base)
         for r in p.rods:
             rod = ax[r].rod
             pin = rod.inner.point if rod.form == "PR" else rod.outer.point
             k_lab = b.label(pin, ax[r].known)
             k_img = b.image(pin, ax[r].known)
             e = ax[r].normal[0]
-            q = f"{sym}:{p.name}/{k_lab}"
-            total = b.quantity(p.name, g.base) - b.quantity(pin, ax[r].known)
+            q = f"{sym}:{name[p.name]}/{k_lab}"
+            total = b.quantity(name[p.name], g.base) - b.quantity(pin, ax[r].known)
             if sym == "v":
                 b.vector(q, k_img, s_img, float(np.linalg.norm(total)), "relative")
-                b.line(k_img, e, [s_img], q, f"{g.name}:{p.name}")
+                b.line(k_img, e, [s_img], q, f"{g.name}:{name[p.name]}")
                 continue
             known = special.known_acceleration(ax[r], g, mech, states, states, p.position)[0]
             c = known - b.quantity(pin, ax[r].known)      # normal (and Coriolis) components, known
-            n_label = f"n_{p.name}{k_lab}"
-            n_xy = tuple(float(v) for v in np.add(k_img, c / b.mu))
-            b.points[n_label] = n_xy
+            n_xy = b.put(("n", name[p.name], k_lab), f"n_{name[p.name]}{k_lab}", np.add(k_img, c / b.mu))
             b.vector(f"{q}:n", k_img, n_xy, float(np.linalg.norm(c)), "normal")
             b.vector(f"{q}:t", n_xy, s_img, float(np.linalg.norm(total - c)), "tangential")
-            b.line(n_xy, e, [s_img], f"{q}:t", f"{g.name}:{p.name}")
+            b.line(n_xy, e, [s_img], f"{q}:t", f"{g.name}:{name[p.name]}")
     # pins of the two rods not common to both special points: from the special points; the
     # common rod's pin is on the line through both, so it comes from the other two pins
     common = (set(used[0].rods) & set(used[1].rods)).pop()
     others = [ax[r].rod.inner.point for r in range(3) if r != common and ax[r].rod.inner.kind == "R"]
     for pin in others:
         for p in used:
-            _rigid(b, Relation("rigid", g.base, pin, p.name, group=f"{g.name}:{pin}"), sym)
+            _rigid(b, Relation("rigid", g.base, pin, name[p.name], group=f"{g.name}:{pin}"), sym)
     last = ax[common].rod.inner
     if last.kind == "R" and len(others) == 2:
         for pin in others:
@@ -397,8 +427,7 @@ def uncertain_plan(motion: Motion, i: int, g: ComplexGroup) -> Plan | None:
     x_name, y_name, known = rod.inner.point, rod.outer.point, rod.outer.b
     v_x = motion.velocity(x_name, g.base)[i]
     b = _Builder(motion, i, float(np.linalg.norm(v_x)) / UNCERTAIN_MM, "velocity")
-    pole = (0.0, 0.0)
-    b.points["p"] = pole
+    pole = b.put(("pole",), "p", (0.0, 0.0))
     centre = motion.position(x_name)[i] + J(v_x) / float(base.omega[0])     # P of the base link
     x_img = b.image(x_name, g.base)
     b.line(pole, J(motion.position(x_name)[i] - centre), [x_img], f"v:{x_name}", f"{g.name}:P")
@@ -416,9 +445,9 @@ def uncertain_plan(motion: Motion, i: int, g: ComplexGroup) -> Plan | None:
             v = motion.velocity(pair.point, g.base)[i]
             b.line(pole, J(motion.position(pair.point)[i] - centre), [img], f"v:{pair.point}", f"{g.name}:P")
             b.vector(f"v:{pair.point}", pole, img, float(np.linalg.norm(v)), "absolute")
-    points = tuple(PlanPoint(k, v) for k, v in b.points.items())
+    points, final = b.plan_points()
     pins = {p.point for p in g.inner if p.kind == "R"}
-    similar = ((g.base, tuple(p.lower() for p in mech.links[g.base].points)),) \
+    similar = ((g.base, tuple(final[b.image_key(p, g.base)] for p in mech.links[g.base].points)),) \
         if set(mech.links[g.base].points) <= pins else ()
-    return Plan(kind="velocity", mu=b.mu, pole="p", points=points, vectors=tuple(b.vectors), lines=tuple(b.lines),
+    return Plan(kind="velocity", mu=b.mu, pole=final[("pole",)], points=points, vectors=tuple(b.vectors), lines=tuple(b.lines),
                 similar=similar)
