@@ -14,6 +14,7 @@ __all__ = [
     "AssemblyError",
     "SingularPositionError",
     "DrawingError",
+    "ConstructionError",
 ]
 
 
@@ -75,3 +76,9 @@ class SingularPositionError(AssemblyError):
 
 class DrawingError(PlansError, ValueError):
     """An SVG cannot be read back or checked."""
+
+
+class ConstructionError(PlansError, ValueError):
+    """A graphical construction that cannot be drawn at this position (a degenerate one, e.g.
+    Koshel's uncertain-scale plan of a group momentarily at rest); the sheet states why, the
+    other sheets and positions are unaffected."""
