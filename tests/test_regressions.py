@@ -175,3 +175,34 @@ def test_pole_label_stays_and_the_clashing_image_is_primed():
     assert plan.pole == "p" and plan.point("p") == (0.0, 0.0) and len(set(labels)) == len(labels)
     v_p = motion.velocity("P")[0] / 0.01
     assert plan.point("p′") == pytest.approx(tuple(v_p), abs=1e-12)
+
+
+# --- a class III group momentarily at rest ------------------------------------------------------
+
+#: Koshel's variant 1 has crank OA and rod AB in line here (found by bisection on OA × AB = 0):
+#: v_A is then ⊥ AB, B stands still and so does the whole triad.
+AT_REST_DEG = 184.6317321208341
+
+
+def test_triad_at_rest_keeps_every_other_sheet(tmp_path, capsys):
+    """The triad momentarily at rest: its links' ω vanish (to rounding), Koshel's sheet at that
+    position says why it is empty, and every other sheet and position is written and checked.
+    (Once the degenerate Koshel sheet failed its check and the whole render was refused.)"""
+    data = _example("koshel_variant1")
+    data["drive"]["angle"] = [0.0, AT_REST_DEG, 200.0]
+    scene = tmp_path / "rest.toml"
+    scene.write_text(toml_text(data), encoding="utf-8")
+    out = tmp_path / "out"
+    assert main(["render", str(scene), "-o", str(out), "-q"]) == 0
+    err = capsys.readouterr().err
+    assert "at rest" in err and "Traceback" not in err
+    report = json.loads((out / "rest.json").read_text(encoding="utf-8"))
+    links = report["positions"][1]["links"]
+    assert max(abs(links[n]["omega"]) for n in ("2", "3", "4", "5")) < 1e-12 * abs(links["1"]["omega"])
+    sfx = [f"{a:g}" for a in data["drive"]["angle"]]
+    for kind in ("scheme", "velocity", "acceleration", "centres", "koshel"):
+        for s in sfx:
+            assert (out / f"rest-{kind}-{s}.svg").exists(), (kind, s)
+    assert "at rest" in (out / f"rest-koshel-{sfx[1]}.svg").read_text(encoding="utf-8")
+    measured = [str(p) for p in sorted(out.glob("*.svg")) if p.name != f"rest-koshel-{sfx[1]}.svg"]
+    assert main(["check", *measured]) == 0

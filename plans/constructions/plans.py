@@ -21,6 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import ConstructionError
 from ..kinematics import Motion, special
 from ..kinematics.state import J
 from ..scene import FRAME
@@ -407,6 +408,10 @@ def _special(b: _Builder, g: ComplexGroup, sym: str) -> None:
 
 #: Length of the arbitrary first vector of Koshel's uncertain-scale plan, mm.
 UNCERTAIN_MM = 60.0
+#: A group whose base pin moves slower than this fraction of its driving pin's speed is at rest
+#: for Koshel's construction (its velocities are then rounding noise, ~1e-16 of the driver's),
+#: and a base link with |ω|·size below this fraction of its pin's speed translates.
+AT_REST = 1e-9
 
 
 def uncertain_plan(motion: Motion, i: int, g: ComplexGroup) -> Plan | None:
@@ -417,23 +422,34 @@ def uncertain_plan(motion: Motion, i: int, g: ComplexGroup) -> Plan | None:
     ⊥ PX. The rod's outer pin Y follows from two directions (⊥ XY through x, the known
     direction of v_Y through p), which fixes the scale K_V = V_Y / py; the base link's other
     pins follow by the similarity proportion |pc| = |px|·PC/PX, ⊥ PC. Returns None when the
-    construction does not apply (no finite centre of the base link, or no such rod)."""
+    construction does not apply to the group (no rod pinned to a moving known link); raises
+    :class:`~plans.errors.ConstructionError` at a position where it degenerates: the group
+    momentarily at rest (every image at the pole: no segment to draw, no scale to find), or
+    the base link translating (its centre P at infinity)."""
     mech = motion.mechanism
-    base = motion.links[g.base].take(np.array([i]))
     rods = [r for r in g.rods if r.form == "RR" and r.outer.b != FRAME]
-    if not rods or abs(float(base.omega[0])) * mech.size <= 1e-9 * float(np.linalg.norm(base.v[0])):
+    if not rods:
         return None
     rod = rods[0]
     x_name, y_name, known = rod.inner.point, rod.outer.point, rod.outer.b
     v_x = motion.velocity(x_name, g.base)[i]
+    v_y = motion.velocity(y_name, known)[i]
+    omega = float(motion.links[g.base].omega[i])
+    if np.linalg.norm(v_x) <= AT_REST * np.linalg.norm(v_y):
+        raise ConstructionError(f"group {g.name} is momentarily at rest (|v_{x_name}| = {np.linalg.norm(v_x):.1e} m/s "
+                                f"while |v_{y_name}| = {np.linalg.norm(v_y):.3g} m/s): every image of the group is "
+                                "at the pole, so Koshel's arbitrary segment has nothing to scale")
+    if abs(omega) * mech.size <= AT_REST * float(np.linalg.norm(v_x)):
+        raise ConstructionError(f"base link {g.base} of group {g.name} translates at this position (ω{g.base} = "
+                                f"{omega:.1e} rad/s): its instantaneous centre is at infinity, so Koshel's "
+                                "construction from it does not apply")
     b = _Builder(motion, i, float(np.linalg.norm(v_x)) / UNCERTAIN_MM, "velocity")
     pole = b.put(("pole",), "p", (0.0, 0.0))
-    centre = motion.position(x_name)[i] + J(v_x) / float(base.omega[0])     # P of the base link
+    centre = motion.position(x_name)[i] + J(v_x) / omega     # P of the base link
     x_img = b.image(x_name, g.base)
     b.line(pole, J(motion.position(x_name)[i] - centre), [x_img], f"v:{x_name}", f"{g.name}:P")
     b.vector(f"v:{x_name}", pole, x_img, float(np.linalg.norm(v_x)), "absolute")
     y_img = b.image(y_name, known)
-    v_y = motion.velocity(y_name, known)[i]
     r = motion.position(y_name)[i] - motion.position(x_name)[i]
     b.line(x_img, J(r), [y_img], f"v:{y_name}/{x_name}", f"{g.name}:{y_name}")
     b.line(pole, v_y, [y_img], f"v:{y_name}", f"{g.name}:{y_name}")
