@@ -122,10 +122,14 @@ def relations(motion: Motion) -> tuple[Relation, ...]:
             if special.supports(g):
                 constructed |= {(g.base, p.point) for p in g.inner if p.kind == "R"}
             continue
+        # every sliding relation of a group is written for the one point whose image the
+        # group's construction finds: the pin E (RRP, PRP) or the outer pin D (RPR, RPP);
+        # two relations for different points of a turning link would meet at no image
+        at = g.e.point if g.e.kind == "R" else g.d.point
         for joint in (g.d, g.e, g.f):
             if joint.kind == "P":
                 pr = joint.prismatic
-                out.append(Relation("slide", pr.slider, pr.label, "", group=name, other=pr.guide))
+                out.append(Relation("slide", pr.slider, at, "", group=name, other=pr.guide))
         if g.d.kind == "R" and g.e.kind == "R":
             out.append(Relation("rigid", g.m, g.e.point, g.d.point, group=name))
         if g.f.kind == "R" and g.e.kind == "R":

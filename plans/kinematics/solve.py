@@ -52,8 +52,7 @@ def analyse(mech: Mechanism, structure: Structure, values: np.ndarray | None = N
     """Positions (order 0), velocities (1) and accelerations (2) at the drive ``values``
     (degrees for a crank, metres for a slider; the scene's values by default)."""
     values = np.asarray(mech.drive.values if values is None else values, dtype=float)
-    states, targets = _positions(mech, structure, values)
-    states = {name: s.take(targets) for name, s in states.items()}
+    states = _reach(mech, structure, values)
     sines: dict[str, np.ndarray] = {}
     if order >= 1:
         _set_drive_rates(mech, states, values)
@@ -75,6 +74,34 @@ def analyse(mech: Mechanism, structure: Structure, values: np.ndarray | None = N
     return Motion(mechanism=mech, structure=structure, values=values, order=order, links=states, sines=sines)
 
 
+def _reach(mech: Mechanism, structure: Structure, values: np.ndarray) -> dict[str, LinkState]:
+    """Poses at ``values``: all in one walk from the sketch (moved by whole turns towards the
+    values' median); when that walk fails, each angle alone, walked the short way round and
+    then, if that passes a limit or singular position, the long way (a crank that cannot turn
+    fully reaches an angle only from one side). An angle reachable neither way is reported
+    as the short way's failure."""
+    try:
+        states, targets = _positions(mech, structure, values)
+        return {name: s.take(targets) for name, s in states.items()}
+    except AssemblyError:
+        if mech.drive.kind != "rotary":
+            raise
+    parts = []
+    for value in values:
+        one = np.array([value])
+        near = mech.drive.sketch_value + 360.0 * np.round((value - mech.drive.sketch_value) / 360.0)
+        try:
+            states, targets = _positions(mech, structure, one, start=near)
+        except AssemblyError as short_way:
+            try:
+                states, targets = _positions(mech, structure, one, start=near + (360.0 if near < value else -360.0))
+            except AssemblyError:
+                raise short_way from None
+        parts.append({name: s.take(targets) for name, s in states.items()})
+    return {name: LinkState(np.concatenate([p[name].theta for p in parts]),
+                            np.concatenate([p[name].origin for p in parts])) for name in parts[0]}
+
+
 def group_condition(mech: Mechanism, g: ComplexGroup, states: dict[str, LinkState]) -> np.ndarray:
     """A class III/IV group's condition figure (±1 well conditioned, 0 singular): the rods'
     axes for a class III group, else the scaled Jacobian's σ_min/σ_max."""
@@ -93,14 +120,18 @@ def _fmt(mech: Mechanism, value: float) -> str:
     return f"{value:g}°" if mech.drive.kind == "rotary" else f"{value:g} m"
 
 
-def _grid(mech: Mechanism, values: np.ndarray) -> tuple[np.ndarray, list[np.ndarray], np.ndarray]:
+def _grid(mech: Mechanism, values: np.ndarray, start: float | None = None
+          ) -> tuple[np.ndarray, list[np.ndarray], np.ndarray]:
     """The continuation grid: its values, its sweeps (index paths from the start), and the
-    index of every requested value in it."""
-    start = mech.drive.sketch_value
+    index of every requested value in it. A crank's walk starts at its sketch angle moved by
+    whole turns towards the values' median, unless ``start`` (such an angle) is given."""
     if mech.drive.kind == "rotary":
-        start += 360.0 * np.round((np.median(values) - start) / 360.0)
+        if start is None:
+            start = mech.drive.sketch_value
+            start += 360.0 * np.round((np.median(values) - start) / 360.0)
         step = STEP_DEG
     else:
+        start = mech.drive.sketch_value
         step = mech.size / 200.0
     up = np.unique(np.concatenate([np.arange(start, values.max(), step), values[values >= start]]))
     down = np.unique(np.concatenate([np.arange(start, values.min(), -step), values[values <= start]]))[::-1]
@@ -149,8 +180,9 @@ def _set_drive_rates(mech: Mechanism, states: dict[str, LinkState], values: np.n
     states[d.link] = s
 
 
-def _positions(mech: Mechanism, structure: Structure, values: np.ndarray) -> tuple[dict[str, LinkState], np.ndarray]:
-    grid, sweeps, index = _grid(mech, values)
+def _positions(mech: Mechanism, structure: Structure, values: np.ndarray, start: float | None = None
+               ) -> tuple[dict[str, LinkState], np.ndarray]:
+    grid, sweeps, index = _grid(mech, values, start)
     states = drive_states(mech, grid)
     tol = 1e-12 * mech.size
     for g in structure.groups:
