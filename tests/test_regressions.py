@@ -197,8 +197,9 @@ def test_triad_at_rest_keeps_every_other_sheet(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "at rest" in err and "Traceback" not in err
     report = json.loads((out / "rest.json").read_text(encoding="utf-8"))
-    links = report["positions"][1]["links"]
-    assert max(abs(links[n]["omega"]) for n in ("2", "3", "4", "5")) < 1e-12 * abs(links["1"]["omega"])
+    links = report["positions"][1]["links"]   # rod 2 turns about B, which stands still
+    assert max(abs(links[n]["omega"]) for n in ("3", "4", "5")) < 1e-12 * abs(links["1"]["omega"])
+    assert np.linalg.norm(report["positions"][1]["points"]["B"]["v"]) < 1e-12
     sfx = [f"{a:g}" for a in data["drive"]["angle"]]
     for kind in ("scheme", "velocity", "acceleration", "centres", "koshel"):
         for s in sfx:
@@ -206,3 +207,21 @@ def test_triad_at_rest_keeps_every_other_sheet(tmp_path, capsys):
     assert "at rest" in (out / f"rest-koshel-{sfx[1]}.svg").read_text(encoding="utf-8")
     measured = [str(p) for p in sorted(out.glob("*.svg")) if p.name != f"rest-koshel-{sfx[1]}.svg"]
     assert main(["check", *measured]) == 0
+
+
+def test_limited_crank_asked_for_angles_on_both_sides_of_its_sketch():
+    """A four-bar whose crank stops at ±144° (sketched at 0°), asked for 30° and 330° at once:
+    the one walk through both fails at the limit, each angle is then walked alone (330° the
+    long way round) — with its velocities and accelerations, which once were lost (TypeError)."""
+    data = {"points": {"O": [0.0, 0.0], "C": [0.24, 0.0], "A": [0.18, 0.0], "B": [0.21, 0.197737199]},
+            "links": {"0": ["O", "C"], "1": ["O", "A"], "2": ["A", "B"], "3": ["C", "B"]},
+            "drive": {"link": "1", "angle": [30.0, 330.0], "omega": 10.0, "epsilon": 2.0}}
+    mech = build_mechanism(parse_scene(data))
+    structure = analyse_structure(mech)
+    both = analyse(mech, structure)
+    for i, angle in enumerate(data["drive"]["angle"]):
+        alone = analyse(mech, structure, np.array([angle]))
+        for f in (both.position, both.velocity, both.acceleration):
+            assert np.array_equal(f("B")[i], getattr(alone, f.__name__)("B")[0])
+    # 330° is reached downwards from the sketch, as −30°, on the sketch's branch (B above OC)
+    assert both.position("B")[0][1] > 0 and both.position("B")[1][1] > 0

@@ -10,6 +10,8 @@ Velocities and accelerations are then solved at the requested positions only.
 
 from __future__ import annotations
 
+from dataclasses import fields
+
 import numpy as np
 
 from ..errors import AssemblyError, SingularPositionError
@@ -98,8 +100,9 @@ def _reach(mech: Mechanism, structure: Structure, values: np.ndarray) -> dict[st
             except AssemblyError:
                 raise short_way from None
         parts.append({name: s.take(targets) for name, s in states.items()})
-    return {name: LinkState(np.concatenate([p[name].theta for p in parts]),
-                            np.concatenate([p[name].origin for p in parts])) for name in parts[0]}
+    return {name: LinkState(*(None if getattr(parts[0][name], f.name) is None
+                              else np.concatenate([getattr(p[name], f.name) for p in parts])
+                              for f in fields(LinkState))) for name in parts[0]}
 
 
 def group_condition(mech: Mechanism, g: ComplexGroup, states: dict[str, LinkState]) -> np.ndarray:
