@@ -1,12 +1,23 @@
 """Structural analysis: Chebyshev's W, Assur groups, their forms, the structural formula.
 
 The decomposition is built up from the original mechanism (frame + driving link): at each
-step the first pair of unknown links that forms a class II group on the known links is
-attached; when no pair does, the first four links that form a class III group (a base link
-with three inner pairs and three rods) or a class IV group (a closed four-sided contour with
-two outer pairs). Read backwards, this is the textbook's removal of the farthest group
-first, simplest groups first; each attached group has W = 0, so W of the remaining chain is
-unchanged by every removal.
+step the first pair of unknown links (in [links] order) that forms a class II group on the
+known links is attached; when no pair does, the first four links that form a class III group
+(a base link with three inner pairs and three rods) or a class IV group (a closed four-sided
+contour with two outer pairs). Read backwards, this is the textbook's removal of the farthest
+group first, simplest groups first; each attached group has W = 0, so W of the remaining chain
+is unchanged by every removal.
+
+"The first" is the first in the order of ``itertools.combinations`` over the remaining links,
+but the search does not walk those combinations (n²/2 pairs and n⁴/24 fours at every step):
+a group's outer pairs join it to known links, so only links next to the known ones (the
+frontier) can take part — a dyad is two adjacent frontier links, a class III group a base
+with three frontier rods, a class IV group a four-link contour through a frontier link. Those
+few candidates are checked and the first in combination order is attached: the same groups as
+a walk over every combination, in the same order and orientation, but the work is about the
+frontier's size per step (O(n²) in all) however the links are listed, instead of growing as n⁴
+(n⁵ counting each check's look-ups) with the unknown links. The listing only breaks ties and
+orients the groups' names, as before.
 """
 
 from __future__ import annotations
@@ -105,7 +116,7 @@ def analyse_structure(mech: Mechanism) -> Structure:
     """Count W = 3n − 2·P5 − P4 and split the mechanism into Assur groups.
 
     Raises :class:`StructureError` when W differs from the number of drives (one), or when
-    some links do not split into class II groups.
+    some links do not split into Assur groups of class II, III or IV.
     """
     n = len(mech.moving)
     p5 = len(mech.revolutes) + len(mech.prismatics)
@@ -117,22 +128,58 @@ def analyse_structure(mech: Mechanism) -> Structure:
         raise StructureError(f"W = 3·{n} − 2·{p5} − {p4} = {dof}, but the scene has 1 drive: {hint}", key="links")
     drive = mech.drive.link
     _check_original_mechanism(mech)
+    groups = _decompose(_Index(mech), mech)
+    return Structure(dof=dof, moving=n, p5=p5, p4=p4, drive=drive, groups=tuple(groups))
+
+
+def _decompose(ix: "_Index", mech: Mechanism) -> list["Group | ComplexGroup"]:
+    """The Assur groups in the order they attach to the frame and the driving link."""
+    drive = mech.drive.link
     known = {FRAME, drive}
-    remaining = [name for name in mech.moving if name != drive]
-    groups: list[Group] = []
+    remaining = {name for name in mech.moving if name != drive}
+    frontier = {x for k in known for x in ix.neighbours[k] if x in remaining}   # remaining links next to known ones
+    groups: list[Group | ComplexGroup] = []
     while remaining:
-        group = next((g for a, b in combinations(remaining, 2) if (g := _dyad(mech, known, a, b))), None)
+        group = _first_dyad(ix, known, remaining, frontier)
         if group is None:
-            group = next((g for four in combinations(remaining, 4) if (g := _complex(mech, known, four))), None)
+            group = _first_complex(ix, known, remaining, frontier)
         if group is None:
-            raise StructureError(
-                f"links {', '.join(remaining)} do not split into Assur groups of class II, III or IV attached to "
-                f"links {', '.join(sorted(known))}: they are not connected to them, or form a group of a higher "
-                "class, which this version does not solve", key="links")
+            raise StructureError(_no_split(ix, known, remaining), key="links")
         groups.append(group)
         known |= set(group.links)
-        remaining = [r for r in remaining if r not in group.links]
-    return Structure(dof=dof, moving=n, p5=p5, p4=p4, drive=drive, groups=tuple(groups))
+        remaining -= set(group.links)
+        frontier -= set(group.links)
+        frontier |= {x for k in group.links for x in ix.neighbours[k] if x in remaining}
+    return groups
+
+
+def _no_split(ix: "_Index", known: set[str], remaining: set[str]) -> str:
+    """Why ``remaining`` does not split: the links (abbreviated when many); the links held by
+    two pairs on known links (locked); the parts of them, joined by pairs, that move on their
+    own (W > 0 relative to the known links) or are locked (W < 0)."""
+    def names(links, order=ix.rank.__getitem__) -> str:
+        ordered = sorted(links, key=order)
+        return ", ".join(ordered) if len(ordered) <= 12 else \
+            f"{', '.join(ordered[:6])}, …, {', '.join(ordered[-3:])} ({len(ordered)} links)"
+
+    parts = []
+    for x in sorted(remaining, key=ix.rank.__getitem__):
+        held = ix.joints(x, known)
+        if len(held) >= 2 and len(parts) < 3:
+            on = sorted({j.other for j in held}, key=ix.rank.__getitem__)
+            parts.append(f"link {x} is held by {len(held)} pairs on link{'s' if len(on) > 1 else ''} "
+                         f"{', '.join(on)} and cannot move (W = −{2 * len(held) - 3} of its own)")
+    for part in ix.components(remaining):
+        pairs = len(ix.pairs_of(part, part | known))
+        w = 3 * len(part) - 2 * pairs
+        if w > 0:
+            parts.append(f"links {names(part)} can move without the drive (W = {w} of their own)")
+        elif w < 0:
+            parts.append(f"links {names(part)} are locked (W = −{-w} of their own)")
+    why = ("; ".join(parts) + " — a pair is misplaced") if parts else \
+        "they are not connected to them, or form a group of a higher class, which this version does not solve"
+    return (f"links {names(remaining)} do not split into Assur groups of class II, III or IV attached to "
+            f"links {names(known, order=None)}: {why}")
 
 
 def _check_original_mechanism(mech: Mechanism) -> None:
@@ -143,27 +190,118 @@ def _check_original_mechanism(mech: Mechanism) -> None:
         raise StructureError(f"the driving slider {d.link} has no guide on the frame", key="drive.link")
 
 
-def _joints(mech: Mechanism, link: str, others: set[str]) -> list[Joint]:
-    """The pairs joining ``link`` to any link of ``others`` (one joint per pin or slider)."""
-    joints = []
-    for point in mech.links[link].points:
-        carriers = [name for name, l in mech.links.items() if point in l.local and name in others]
-        if carriers:
-            joints.append(Joint("R", carriers[0], point=point))
-    for p in mech.prismatics:
-        if link in (p.slider, p.guide) and p.other(link) in others:
-            joints.append(Joint("P", p.other(link), prismatic=p))
-    return joints
+class _Index:
+    """Who is joined to whom in a mechanism, built once per analysis.
+
+    ``rank``: a link's place in [links] (the search's order); ``carriers``: the links carrying
+    a point, in [links] order; ``sliding``: a link's prismatic pairs; ``neighbours``: the links
+    sharing a point or a prismatic pair with a link; ``incident``: a link's pairs as the pair
+    count of W has them (a pin of k links is k − 1 revolutes, see ``build_mechanism``), with
+    their place in ``revolutes + prismatics``; ``adjacent``: the links those pairs join it to.
+    """
+
+    def __init__(self, mech: Mechanism):
+        self.mech = mech
+        self.rank = {name: i for i, name in enumerate(mech.links)}
+        self.carriers: dict[str, list[str]] = {}
+        for name, link in mech.links.items():
+            for point in link.local:
+                self.carriers.setdefault(point, []).append(name)
+        self.sliding: dict[str, list[Prismatic]] = {name: [] for name in mech.links}
+        for p in mech.prismatics:
+            self.sliding[p.slider].append(p)
+            if p.guide != p.slider:
+                self.sliding[p.guide].append(p)
+        self.neighbours: dict[str, set[str]] = {name: set() for name in mech.links}
+        for name, link in mech.links.items():
+            for point in link.points:
+                self.neighbours[name].update(c for c in self.carriers[point] if c != name)
+            self.neighbours[name].update(p.other(name) for p in self.sliding[name])
+        # (place, link, other link, pin, prismatic) for each end of each pair
+        self.incident: dict[str, list[tuple[int, str, str, str | None, Prismatic | None]]] = \
+            {name: [] for name in mech.links}
+        for i, r in enumerate(mech.revolutes):
+            self.incident[r.a].append((i, r.a, r.b, r.point, None))
+            self.incident[r.b].append((i, r.b, r.a, r.point, None))
+        for i, p in enumerate(mech.prismatics, start=len(mech.revolutes)):
+            self.incident[p.slider].append((i, p.slider, p.guide, None, p))
+            self.incident[p.guide].append((i, p.guide, p.slider, None, p))
+        self.adjacent: dict[str, set[str]] = {name: {e[2] for e in self.incident[name]} for name in mech.links}
+
+    def joints(self, link: str, others: set[str]) -> list[Joint]:
+        """The pairs joining ``link`` to any link of ``others`` (one joint per pin or slider)."""
+        joints = []
+        for point in self.mech.links[link].points:
+            carrier = next((c for c in self.carriers[point] if c in others), None)
+            if carrier is not None:
+                joints.append(Joint("R", carrier, point=point))
+        for p in self.sliding[link]:
+            if p.other(link) in others:
+                joints.append(Joint("P", p.other(link), prismatic=p))
+        return joints
+
+    def pairs_of(self, links: set[str], others: set[str]) -> list[Pair]:
+        """Pairs joining a link of ``links`` to a link of ``others``, in the order of the
+        mechanism's revolutes then prismatics (a pair inside ``links`` once, from its
+        alphabetically first link)."""
+        found = {}
+        for link in links:
+            for i, a, b, point, prismatic in self.incident[link]:
+                if b in others and not (b in links and a > b):
+                    found[i] = Pair("P" if prismatic is not None else "R", a, b, point=point, prismatic=prismatic)
+        return [found[i] for i in sorted(found)]
+
+    def count(self, link: str, others: set[str]) -> int:
+        """How many pairs join ``link`` to links of ``others``."""
+        return sum(e[2] in others for e in self.incident[link])
+
+    def components(self, links: set[str]) -> list[set[str]]:
+        """``links`` split into parts joined by pairs, in [links] order of their first links."""
+        left, parts = set(links), []
+        for start in sorted(links, key=self.rank.__getitem__):
+            if start not in left:
+                continue
+            part, todo = {start}, [start]
+            left.discard(start)
+            while todo:
+                for x in self.adjacent[todo.pop()]:
+                    if x in left:
+                        left.discard(x)
+                        part.add(x)
+                        todo.append(x)
+            parts.append(part)
+        return parts
 
 
-def _dyad(mech: Mechanism, known: set[str], a: str, b: str) -> Group | None:
-    outer_a, outer_b = _joints(mech, a, known), _joints(mech, b, known)
+def _first_dyad(ix: _Index, known: set[str], remaining: set[str], frontier: set[str]) -> Group | None:
+    """The first pair of remaining links (in [links] order) that forms a class II group on
+    the known links: two adjacent frontier links, each with one outer pair."""
+    single = {x for x in frontier if len(ix.joints(x, known)) == 1}
+    best = None
+    for a in single:
+        for b in ix.neighbours[a]:
+            if b in single and ix.rank[a] < ix.rank[b] and (best is None or (ix.rank[a], ix.rank[b]) < best[0]) \
+                    and _dyad_fit(ix, known, a, b):
+                best = ((ix.rank[a], ix.rank[b]), a, b)
+    return None if best is None else _dyad(ix, known, best[1], best[2])
+
+
+def _dyad_fit(ix: _Index, known: set[str], a: str, b: str) -> tuple[Joint, Joint, Joint] | None:
+    """The outer pairs of ``a`` and ``b`` and their inner pair, if they form a class II group
+    on the known links (a listed before b)."""
+    outer_a, outer_b = ix.joints(a, known), ix.joints(b, known)
     # a pin shared by a, b and a known link fixes both a and b there: two outer pairs, no inner one
-    inner = [j for j in _joints(mech, a, {b}) if not (j.kind == "R" and any(o.point == j.point for o in outer_a))]
+    inner = [j for j in ix.joints(a, {b}) if not (j.kind == "R" and any(o.point == j.point for o in outer_a))]
     if len(outer_a) != 1 or len(outer_b) != 1 or len(inner) != 1:
         return None
-    m, n, d, f = a, b, outer_a[0], outer_b[0]
-    e = inner[0]
+    return outer_a[0], inner[0], outer_b[0]
+
+
+def _dyad(ix: _Index, known: set[str], a: str, b: str) -> Group | None:
+    fit = _dyad_fit(ix, known, a, b)
+    if fit is None:
+        return None
+    (d, e, f), m, n = fit, a, b
     if d.kind == "P" and f.kind == "R":       # PRR → RRP, PPR → RPP: put the revolute outer pair first
         m, n, d, f = n, m, f, d
     e = Joint(e.kind, n, point=e.point, prismatic=e.prismatic)
@@ -263,26 +401,34 @@ class ComplexGroup:
         return out
 
 
-def _pairs_of(mech: Mechanism, links: set[str], others: set[str]) -> list[Pair]:
-    """Pairs joining a link of ``links`` to a link of ``others`` (a pin shared by several
-    links is one pair per extra link, as in W)."""
-    out = []
-    for r in mech.revolutes:
-        for a, b in ((r.a, r.b), (r.b, r.a)):
-            if a in links and b in others and not (b in links and a > b):
-                out.append(Pair("R", a, b, point=r.point))
-    for p in mech.prismatics:
-        for a, b in ((p.slider, p.guide), (p.guide, p.slider)):
-            if a in links and b in others and not (b in links and a > b):
-                out.append(Pair("P", a, b, prismatic=p))
-    return out
+def _first_complex(ix: _Index, known: set[str], remaining: set[str],
+                   frontier: set[str]) -> ComplexGroup | None:
+    """The first four remaining links (in [links] order) that form a class III or IV group on
+    the known links. Candidates: a base link with no outer pair and three rods, each joined to
+    it and to the known links by one pair (class III); a contour of four links through a link
+    with an outer pair (class IV); :func:`_complex` decides."""
+    outer = {x: ix.count(x, known) for x in frontier}
+    candidates: set[frozenset[str]] = set()
+    rods = {x for x, k in outer.items() if k == 1}
+    for base in {b for r in rods for b in ix.adjacent[r] if b in remaining and not outer.get(b)}:
+        arms = sorted((r for r in ix.adjacent[base] if r in rods and ix.count(r, {base}) == 1), key=ix.rank.__getitem__)
+        candidates.update(frozenset((base, *three)) for three in combinations(arms, 3))
+    for a in (x for x, k in outer.items() if 1 <= k <= 2):
+        for b in ix.adjacent[a] & remaining:
+            for c in ix.adjacent[b] & remaining - {a}:
+                for d in ix.adjacent[c] & remaining - {a, b}:
+                    if a in ix.adjacent[d]:
+                        candidates.add(frozenset((a, b, c, d)))
+    ordered = sorted((tuple(sorted(c, key=ix.rank.__getitem__)) for c in candidates),
+                     key=lambda four: [ix.rank[x] for x in four])      # the order of combinations()
+    return next((g for four in ordered if (g := _complex(ix, known, four))), None)
 
 
-def _complex(mech: Mechanism, known: set[str], four: tuple[str, ...]) -> ComplexGroup | None:
+def _complex(ix: _Index, known: set[str], four: tuple[str, ...]) -> ComplexGroup | None:
     """The class III or IV group formed by links ``four`` on the ``known`` links, if any."""
     links = set(four)
-    inner = _pairs_of(mech, links, links)
-    outer = _pairs_of(mech, links, known)
+    inner = ix.pairs_of(links, links)
+    outer = ix.pairs_of(links, known)
     if len(inner) + len(outer) != 6:
         return None
     degree = {name: sum(name in (p.a, p.b) for p in inner) for name in four}
@@ -296,17 +442,22 @@ def _complex(mech: Mechanism, known: set[str], four: tuple[str, ...]) -> Complex
         inner = [Pair(p.kind, b, p.other(b), p.point, p.prismatic) for p in inner]
         return ComplexGroup(links=four, inner=tuple(inner), outer=tuple(outer), klass=3, base=b)
     if len(inner) == 4 and all(d == 2 for d in degree.values()) and len(outer) == 2:
-        return ComplexGroup(links=four, inner=tuple(_contour(inner)), outer=tuple(outer), klass=4)
+        contour = _contour(inner)
+        return None if contour is None else ComplexGroup(links=four, inner=tuple(contour), outer=tuple(outer),
+                                                         klass=4)
     return None
 
 
-def _contour(inner: list[Pair]) -> list[Pair]:
-    """The four inner pairs of a class IV group in order around the contour."""
+def _contour(inner: list[Pair]) -> list[Pair] | None:
+    """The four inner pairs of a class IV group in order around the contour; None when they
+    do not close one contour (two links joined twice, and two others)."""
     ordered = [inner[0]]
     rest = inner[1:]
     link = inner[0].b
     while rest:
-        nxt = next(p for p in rest if link in (p.a, p.b))
+        nxt = next((p for p in rest if link in (p.a, p.b)), None)
+        if nxt is None:
+            return None
         rest.remove(nxt)
         ordered.append(Pair(nxt.kind, link, nxt.other(link), nxt.point, nxt.prismatic))
         link = nxt.other(link)
