@@ -1,33 +1,88 @@
 """Measuring drawings: every tagged vector of an SVG, and every construction with shapely.
 
-``check_svg`` reads an SVG back (ElementTree), measures each ``<line data-quantity>`` in
-millimetres, multiplies by its plan's ``data-mu`` and compares with ``data-value``. The
-tolerance is the drawing's precision: two rounded end points (``data-precision`` mm each
-coordinate) plus 1e-9 relative.
+``inspect_svg`` reads an SVG back (ElementTree) and checks, plan by plan (a ``<g>`` with
+``data-mu``), what the drawing claims:
+
+1. **length** — each ``<line data-quantity>`` measured in millimetres × the plan's
+   ``data-mu`` equals ``data-value`` within ``mu · 2√2 · precision + 1e-9 · value`` (two end
+   points, each rounded by at most ``precision`` per coordinate);
+2. **direction** — the drawn direction ``(x2 − x1, y2 − y1)`` agrees with
+   ``data-direction`` (degrees, SVG paper frame: x right, y down, tail → head). The exact
+   vector is ``e = (value/μ)·(cos θ, sin θ)`` mm; two rounded ends move the drawn vector by at
+   most ``r = 2√2 · precision`` mm, so the angle between drawn and exact may reach
+   ``asin(r/|e|)`` ≈ ``2√2 · precision / |e|`` (+ 1e-9 rad): short vectors get a looser
+   angular tolerance, and a vector shorter than ``r`` has no measurable direction;
+3. **closure** — the vector equations close graphically. Each vector's ends are points
+   (images) named twice: by the writer's labels ``data-from``/``data-to`` and by the
+   quantity's name — ``v:X`` runs from the pole to x; ``v:X/Y`` (``a:X/Y``, ``r:X/Y``) from
+   y to x; ``a:X/Y:n`` from y to n_XY and ``a:X/Y:t`` from n_XY to x; ``a:X/Y:cor`` from y to
+   k_XY and ``a:X/Y:r`` from k_XY to x. Ends named alike (by either name) form one point,
+   and all its ends must coincide within ``2√2 · precision`` — so ``p→a`` plus ``a→b`` ends
+   where ``p→b`` ends. A name of another form adds no equation (never a failure); each
+   plan's number of equations checked is reported (:attr:`SvgReport.equations`);
+4. **the file itself** — the user unit is the millimetre (``width``/``height`` in mm equal
+   to the ``viewBox``, origin 0 0); no ``transform`` (attribute or CSS) on a tagged line
+   or any element above it, whose ancestors are ``<g>`` and the root ``<svg>`` only;
+   ``data-mu`` positive and finite; ``data-value`` finite and ≥ 0; every ``<line>`` of a
+   plan either a tagged vector or a construction line (``data-construction``).
+
+**Precision.** The tolerance never comes from the file. ``plans check`` measures against
+:data:`WRITER_PRECISION`, the rounding of plans' own writer (``Style().precision``); a
+library caller that wrote with another :class:`~plans.drawing.style.Style` passes its
+``precision``, and with ``precision=None`` it is the rounding of the coordinates actually
+written (``0.5 · 10^-D``, D the most decimals of any vector coordinate). A root
+``data-precision`` looser than that precision, or not a positive number, is a failure.
+
+**Sheets.** Each plan's ``<g>`` states how many vectors its writer drew
+(``data-vectors``); the tagged lines found must be that many. A file whose only plan group is
+the scheme (``data-plan="scheme"``) has nothing to measure: it is reported as a scheme and is
+not a failure; nor is a plan drawn with no vector (``data-vectors="0"``: the pole alone — a
+mechanism at rest, or a construction not drawn at that position, as its subtitle says). Any
+other file without a tagged vector — a plan whose tags were removed, or an SVG not written by
+plans — fails ("no tagged vectors: not a plan written by plans"). A centres sheet's measured
+segments ``r:X/Pj`` run from the centre Pj to the point X and are checked like vectors.
 """
 
 from __future__ import annotations
 
 import math
+import re
 import xml.etree.ElementTree as ET
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from decimal import Decimal, InvalidOperation
 from pathlib import Path
 
 from shapely.geometry import LineString, Point
 
 from .constructions.plans import Plan
+from .drawing.style import Style
 from .errors import DrawingError
 
-__all__ = ["Measurement", "check_svg", "check_plan", "GEOMETRY_TOL_MM"]
+__all__ = ["Measurement", "Closure", "SvgReport", "inspect_svg", "check_svg", "check_plan", "GEOMETRY_TOL_MM",
+           "WRITER_PRECISION"]
 
 _SVG = "{http://www.w3.org/2000/svg}"
 #: Largest distance (mm) between a plan image and the construction lines it must lie on.
 GEOMETRY_TOL_MM = 1e-6
+#: Rounding of one coordinate written by plans' own writer, mm: what ``plans check`` measures against.
+WRITER_PRECISION = Style().precision
+#: Relative slack on lengths (SI) and on the angular tolerance (rad) for floating-point noise.
+_REL = 1e-9
+#: Plans whose vectors are measured; a group with another ``data-plan`` is a plan too unless "scheme".
+SCHEME = "scheme"
+#: Kind of a plan sheet its writer drew with no vector (``data-vectors="0"``): the pole alone.
+EMPTY = "empty"
+#: Root ids written for plan sheets (a sheet claiming to be a plan must carry tagged vectors).
+_PLAN_IDS = ("velocity", "acceleration", "koshel", "centres")
+_NAME = re.compile(r"^(?P<sym>[A-Za-z]+):(?P<x>[^/:]+)(?:/(?P<y>[^/:]+))?(?::(?P<comp>n|t|cor|r))?$")
+_TRANSFORM = re.compile(r"transform", re.IGNORECASE)
 
 
 @dataclass(frozen=True)
 class Measurement:
-    """One measured vector: drawn length (mm) × μ against the exact value (SI)."""
+    """One measured vector: drawn length (mm) × μ against the exact value (SI), and its drawn
+    direction against the recorded one (``angle_error`` rad; NaN when unmeasurable).
+    ``problem`` names what makes it unmeasurable (a non-finite value, no direction …)."""
 
     quantity: str
     plan: str
@@ -35,6 +90,9 @@ class Measurement:
     mu: float
     value: float
     tolerance: float
+    angle_error: float = 0.0
+    angle_tolerance: float = math.pi
+    problem: str = ""
 
     @property
     def measured(self) -> float:
@@ -42,47 +100,301 @@ class Measurement:
 
     @property
     def error(self) -> float:
-        return abs(self.measured - self.value)
+        err = abs(self.measured - self.value)
+        return err if math.isfinite(err) else math.inf
+
+    @property
+    def length_ok(self) -> bool:
+        return self.error <= self.tolerance
+
+    @property
+    def direction_ok(self) -> bool:
+        return math.isnan(self.angle_error) or self.angle_error <= self.angle_tolerance
 
     @property
     def ok(self) -> bool:
-        return self.error <= self.tolerance
+        return not self.problem and self.length_ok and self.direction_ok
 
 
-def check_svg(path: str | Path) -> list[Measurement]:
-    """Measure every tagged vector of the SVG at ``path``."""
+@dataclass(frozen=True)
+class Closure:
+    """One point of a plan reached by several vector ends: ``ends`` (``quantity tail|head``),
+    their largest distance apart ``gap_mm`` and the tolerance."""
+
+    plan: str
+    point: str
+    ends: tuple[str, ...]
+    gap_mm: float
+    tolerance_mm: float
+
+    @property
+    def ok(self) -> bool:
+        return self.gap_mm <= self.tolerance_mm
+
+
+@dataclass
+class SvgReport:
+    """Everything ``plans check`` found in one file. ``kind``: ``plan`` (tagged vectors),
+    ``scheme`` (a scheme sheet: nothing to measure), ``empty`` (a plan its writer drew with no
+    vector, ``data-vectors="0"``: the pole alone) or ``none`` (nothing tagged: a failure).
+    ``equations``: plan group id → number of closure equations checked."""
+
+    path: str
+    kind: str
+    precision: float
+    measurements: list[Measurement] = field(default_factory=list)
+    closures: list[Closure] = field(default_factory=list)
+    problems: list[str] = field(default_factory=list)
+    equations: dict[str, int] = field(default_factory=dict)
+
+    @property
+    def ok(self) -> bool:
+        return (self.kind != "none" and not self.problems and all(m.ok for m in self.measurements)
+                and all(c.ok for c in self.closures))
+
+
+def _number(text: str | None) -> float | None:
+    try:
+        return float(text)
+    except (TypeError, ValueError):
+        return None
+
+
+def _decimals(text: str) -> int:
+    try:
+        return max(0, -int(Decimal(text.strip()).as_tuple().exponent))
+    except (InvalidOperation, ValueError, TypeError, AttributeError):
+        return 0
+
+
+def _mm(text: str | None) -> float | None:
+    if text is None or not text.strip().endswith("mm"):
+        return None
+    return _number(text.strip()[:-2])
+
+
+def _paper_problems(root: ET.Element) -> list[str]:
+    """The user unit must be the millimetre: width/height in mm equal to the viewBox at 0 0."""
+    w, h = _mm(root.get("width")), _mm(root.get("height"))
+    box = (root.get("viewBox") or "").replace(",", " ").split()
+    vals = [_number(b) for b in box]
+    if w is None or h is None or len(vals) != 4 or None in vals:
+        return ["the root <svg> needs width and height in mm and a viewBox (one user unit = one mm)"]
+    if vals[0] != 0 or vals[1] != 0 or not math.isclose(vals[2], w, rel_tol=1e-9) \
+            or not math.isclose(vals[3], h, rel_tol=1e-9):
+        return [f"viewBox {' '.join(box)} does not match {root.get('width')} × {root.get('height')}: "
+                "the user unit is not the millimetre"]
+    return []
+
+
+def _transformed(el: ET.Element) -> bool:
+    return el.get("transform") is not None or bool(_TRANSFORM.search(el.get("style") or ""))
+
+
+def _ends(quantity: str) -> tuple[tuple | None, tuple | None, bool]:
+    """The points a quantity's name says its tail and head are (None: not known), and
+    whether it is an absolute vector (from the pole)."""
+    m = _NAME.match(quantity)
+    if m is None:
+        return None, None, False
+    sym, x, y, comp = m["sym"], m["x"], m["y"], m["comp"]
+    if y is None:
+        if comp is None and sym in ("v", "a"):
+            return ("pole",), ("pt", x), True
+        return None, None, False
+    if comp is None:
+        return ("pt", y), ("pt", x), False
+    mid = ("n" if comp in ("n", "t") else "k", x, y)
+    return (("pt", y), mid, False) if comp in ("n", "cor") else (mid, ("pt", x), False)
+
+
+def _point_name(token: tuple) -> str:
+    if token[0] == "pole":
+        return "pole"
+    return token[1] if token[0] == "pt" else f"{token[0]}_{token[1]}{token[2]}"
+
+
+class _Union:
+    def __init__(self):
+        self.up: dict = {}
+
+    def find(self, a):
+        self.up.setdefault(a, a)
+        while self.up[a] != a:
+            self.up[a] = self.up[self.up[a]]
+            a = self.up[a]
+        return a
+
+    def join(self, a, b):
+        self.up[self.find(a)] = self.find(b)
+
+
+def inspect_svg(path: str | Path, precision: float | None = WRITER_PRECISION) -> SvgReport:
+    """Check every tagged vector, every vector equation and the file's own geometry (see the
+    module docstring). ``precision``: the rounding (mm) the file was written with — plans'
+    writer by default; None: that of the coordinates actually written. Raises
+    :class:`DrawingError` only when the file cannot be read as XML."""
     path = Path(path)
     try:
         root = ET.parse(path).getroot()
     except (OSError, ET.ParseError) as exc:
         raise DrawingError(f"{path}: cannot read the SVG ({exc})") from None
-    try:
-        precision = float(root.get("data-precision", "0.0005"))
-    except ValueError:
-        raise DrawingError(f"{path}: data-precision is not a number") from None
-    out = []
-    for g in root.iter(f"{_SVG}g"):
-        if g.get("data-mu") is None:
+    parent = {c: p for p in root.iter() for c in p}
+    tagged = [e for e in root.iter() if e.get("data-quantity") is not None]
+    plan_groups = [g for g in root.iter(f"{_SVG}g") if g.get("data-mu") is not None]
+    claims_plan = any(g.get("data-plan") != SCHEME for g in plan_groups) \
+        or (root.get("id") or "").startswith(_PLAN_IDS)
+    plans_ = [g for g in plan_groups if g.get("data-plan") != SCHEME]
+    if not tagged:
+        if plan_groups and not claims_plan:
+            return SvgReport(str(path), SCHEME, precision or WRITER_PRECISION)
+        if plans_ and all(g.get("data-vectors") == "0" for g in plans_):
+            return SvgReport(str(path), EMPTY, precision or WRITER_PRECISION)
+        return SvgReport(str(path), "none", precision or WRITER_PRECISION,
+                         problems=["no tagged vectors: not a plan written by plans"])
+    if precision is None:
+        digits = max((_decimals(e.get(k) or "") for e in tagged for k in ("x1", "y1", "x2", "y2")), default=0)
+        precision = 0.5 * 10.0 ** -digits
+    report = SvgReport(str(path), "plan", precision)
+    problems = report.problems
+    if root.tag != f"{_SVG}svg":
+        problems.append(f"the root element is <{root.tag}>, not an SVG <svg>")
+    problems += _paper_problems(root)
+    claimed = root.get("data-precision")
+    if claimed is not None:
+        c = _number(claimed)
+        if c is None or not math.isfinite(c) or c <= 0:
+            problems.append(f"data-precision {claimed!r} is not a positive number")
+        elif c > precision * (1 + _REL):
+            problems.append(f"data-precision {claimed} mm claims a looser drawing than plans checks against "
+                            f"({precision:g} mm): refused")
+    for style in root.iter(f"{_SVG}style"):
+        if _TRANSFORM.search(style.text or ""):
+            problems.append("a <style> sheet sets a transform: plan elements must not be transformed")
+    for g in plan_groups:
+        if g.get("data-plan") == SCHEME:
             continue
-        try:
-            mu = float(g.get("data-mu"))
-        except ValueError:
-            raise DrawingError(f"{path}: group {g.get('id')} has a non-numeric data-mu") from None
         for line in g.iter(f"{_SVG}line"):
-            q = line.get("data-quantity")
-            if q is None:
-                continue
-            try:
-                x1, y1, x2, y2 = (float(line.get(k)) for k in ("x1", "y1", "x2", "y2"))
-                value = float(line.get("data-value"))
-            except (TypeError, ValueError):
-                raise DrawingError(f"{path}: line {line.get('id')} ({q}) lacks coordinates or data-value") from None
-            if line.get("transform") or g.get("transform"):
-                raise DrawingError(f"{path}: line {q} is transformed; plan elements must not be")
-            length = math.hypot(x2 - x1, y2 - y1)
-            tol = mu * 2.0 * math.sqrt(2.0) * precision + 1e-9 * abs(value)
-            out.append(Measurement(q, g.get("data-plan", ""), length, mu, value, tol))
-    return out
+            if line.get("data-quantity") is None and line.get("data-construction") is None:
+                problems.append(f"plan {g.get('id')}: line {line.get('id')} is neither a tagged vector nor a "
+                                "construction line")
+    by_group: dict[ET.Element, list] = {}
+    for line in tagged:
+        q = line.get("data-quantity")
+        chain, el, group = [], line, None
+        while el in parent:
+            el = parent[el]
+            chain.append(el)
+            if group is None and el.tag == f"{_SVG}g" and el.get("data-mu") is not None:
+                group = el
+        if line.tag != f"{_SVG}line":
+            problems.append(f"{q}: tagged element <{line.tag.replace(_SVG, '')}> is not a <line>")
+            continue
+        bad = [e for e in [line] + chain if _transformed(e)]
+        if bad:
+            problems.append(f"{q}: transform on <{bad[0].tag.replace(_SVG, '')} id={bad[0].get('id')!r}>; "
+                            "plan elements and everything above them must not be transformed")
+        odd = [e for e in chain if e.tag != f"{_SVG}g" and e is not root]
+        if odd:
+            problems.append(f"{q}: inside <{odd[0].tag.replace(_SVG, '')}>; a vector may sit in <g> elements only")
+        if group is None:
+            problems.append(f"{q}: tagged vector outside any plan group (<g data-mu>)")
+            continue
+        by_group.setdefault(group, []).append(line)
+    for g in plans_:
+        declared, found = g.get("data-vectors"), len(by_group.get(g, []))
+        if declared is not None and declared != str(found):
+            problems.append(f"plan {g.get('id')}: {found} tagged vectors where the writer drew {declared!r}")
+    for g, lines in by_group.items():
+        _check_group(report, g, lines)
+    return report
+
+
+def _check_group(report: SvgReport, g: ET.Element, lines: list[ET.Element]) -> None:
+    plan, gid, p = g.get("data-plan", ""), g.get("id") or g.get("data-plan", ""), report.precision
+    mu = _number(g.get("data-mu"))
+    if mu is None or not math.isfinite(mu) or mu <= 0:
+        report.problems.append(f"plan {gid}: data-mu {g.get('data-mu')!r} is not a positive finite number")
+        return
+    r = 2.0 * math.sqrt(2.0) * p          # largest drawn-vector error from two rounded ends, mm
+    ends = []                              # (name of the end, paper xy, absolute?, name token, label token)
+    for line in lines:
+        q = line.get("data-quantity")
+        xy = [_number(line.get(k)) for k in ("x1", "y1", "x2", "y2")]
+        value = _number(line.get("data-value"))
+        theta = _number(line.get("data-direction"))
+        if None in xy or not all(math.isfinite(c) for c in xy):
+            report.measurements.append(Measurement(q, plan, math.nan, mu, value if value is not None else math.nan,
+                                                   0.0, problem="coordinates missing or not finite numbers"))
+            continue
+        x1, y1, x2, y2 = xy
+        length = math.hypot(x2 - x1, y2 - y1)
+        problem = ""
+        if value is None or not math.isfinite(value) or value < 0:
+            problem = f"data-value {line.get('data-value')!r} is not a finite number ≥ 0"
+            value = math.nan if value is None else value
+        elif theta is None or not math.isfinite(theta):
+            problem = ("no data-direction: exact direction not recorded (written by an older plans? re-render)"
+                       if line.get("data-direction") is None else
+                       f"data-direction {line.get('data-direction')!r}: exact direction not recorded")
+        elif line.get("data-from") is None or line.get("data-to") is None:
+            problem = "data-from/data-to: the images the vector joins are not recorded"
+        tol = mu * r + _REL * abs(value) if math.isfinite(value) else 0.0
+        angle_err, angle_tol = math.nan, math.pi
+        if not problem:
+            exact_mm = value / mu
+            if exact_mm > r and length > 0:
+                t = math.radians(theta)
+                cos = ((x2 - x1) * math.cos(t) + (y2 - y1) * math.sin(t)) / length
+                angle_err = math.acos(max(-1.0, min(1.0, cos)))
+                angle_tol = math.asin(min(1.0, r / exact_mm)) + _REL
+        report.measurements.append(Measurement(q, plan, length, mu, value, tol, angle_err, angle_tol, problem))
+        tail, head, absolute = _ends(q)
+        for which, pt, name, label in (("tail", (x1, y1), tail, line.get("data-from")),
+                                       ("head", (x2, y2), head, line.get("data-to"))):
+            ends.append((f"{q} {which}", pt, absolute, name, label))
+    _closures(report, gid, ends, r + _REL)
+
+
+def _closures(report: SvgReport, gid: str, ends: list, tol: float) -> None:
+    """Join the ends named alike (by label or by the quantity's name); every point's ends
+    must coincide."""
+    u = _Union()
+    for k, (_, _, _, name, label) in enumerate(ends):
+        u.find(("end", k))
+        if name is not None:
+            u.join(("end", k), ("name", name))
+        if label is not None:
+            u.join(("end", k), ("label", label))
+    classes: dict = {}
+    for k in range(len(ends)):
+        classes.setdefault(u.find(("end", k)), []).append(k)
+    count = 0
+    for members in classes.values():
+        if len(members) < 2:
+            continue
+        pts = [ends[k][1] for k in members]
+        gap = max(math.dist(a, b) for a in pts for b in pts)
+        labels = sorted({ends[k][4] for k in members if ends[k][4] is not None})
+        names = sorted({_point_name(ends[k][3]) for k in members if ends[k][3] is not None})
+        point = " = ".join(labels + [n for n in names if n not in labels]) or "?"
+        report.closures.append(Closure(gid, point, tuple(ends[k][0] for k in members), gap, tol))
+        if not all(ends[k][2] for k in members):   # the pole shared by absolute vectors only is no equation
+            count += len(members) - 1
+    report.equations[gid] = report.equations.get(gid, 0) + count
+
+
+def check_svg(path: str | Path, precision: float | None = None) -> list[Measurement]:
+    """Measure every tagged vector of the SVG at ``path`` (length and direction; see
+    :func:`inspect_svg` for the closure and file checks). ``precision`` (mm) as there, but
+    by default that of the coordinates actually written. Raises :class:`DrawingError` when the
+    file breaks the SVG contract (a transform, a doctored data-precision, a bad data-mu …)."""
+    report = inspect_svg(path, precision)
+    if report.kind == "none":
+        return []
+    if report.problems:
+        raise DrawingError(f"{path}: {report.problems[0]}")
+    return report.measurements
 
 
 def check_plan(plan: Plan, tol: float = GEOMETRY_TOL_MM) -> list[str]:

@@ -11,8 +11,9 @@ from typing import Sequence
 import numpy as np
 
 from .checking import check_svg
-from .errors import PlansError
-from .render import Rendered, render_scene, write_files
+from .errors import OutputError, PlansError, one_line
+from .output import check_folder, write_files
+from .render import Rendered, render_scene
 
 __all__ = ["main"]
 
@@ -45,32 +46,79 @@ def _table(r: Rendered) -> str:
 
 
 def _render(paths: Sequence[str], out: str, quiet: bool) -> int:
-    rendered = [render_scene(p) for p in paths]   # every scene first: an error writes nothing
+    """Render every scene, then write all their files at once: any error writes nothing."""
+    _distinct_stems(paths)
+    check_folder(out)
+    rendered = [render_scene(p) for p in paths]
+    files: dict[str, str] = {}
+    for path, r in zip(paths, rendered):
+        clash = next((name for name in r.files if name in files), None)
+        if clash:
+            raise OutputError(f"would write {clash}, which another scene writes too; rename one scene",
+                              file=path, key="SCENE.toml")
+        files.update(r.files)
+    write_files(files, out)
     for r in rendered:
-        written = write_files(r.files, out)
         if not quiet:
             print(_table(r))
-            print(f"  wrote {len(written)} files to {out}/")
+            print(f"  wrote {len(r.files)} files to {out}/")
         for w in r.warnings:
             print(f"warning: {w}", file=sys.stderr)
     return 0
 
 
+def _distinct_stems(paths: Sequence[str]) -> None:
+    """Refuse two scenes with the same file stem: the second would overwrite the first's files."""
+    seen: dict[str, str] = {}
+    for p in paths:
+        stem = Path(p).stem
+        if stem in seen:
+            same = Path(seen[stem]).resolve() == Path(p).resolve()
+            raise OutputError("given twice; render it once" if same else
+                              f"has the same name as {seen[stem]}: both would write {stem}.json and {stem}-*.svg, "
+                              "the second over the first; rename one or render them with different -o",
+                              file=p, key="SCENE.toml")
+        seen[stem] = p
+
+
 def _check(paths: Sequence[str]) -> int:
-    bad = 0
-    total = 0
+    """Lengths, directions, closures and the file contract of each SVG (plans.checking);
+    exit 1 when anything fails, a plan without tagged vectors included; a scheme sheet has
+    nothing to measure and passes."""
+    import math
+
+    from .checking import inspect_svg
+
+    bad = total = equations = open_ = failed = 0
     for path in paths:
-        rows = check_svg(path)
+        r = inspect_svg(path)
         print(f"{path}:")
-        if not rows:
-            print("  no tagged vectors")
-        for m in rows:
+        if r.kind == "scheme":
+            print("  scheme sheet: no vectors to measure (not a plan)")
+        elif r.kind == "empty":
+            print("  plan drawn with no vector (the pole alone, as its subtitle says): nothing to measure")
+        for m in r.measurements:
             total += 1
             bad += not m.ok
+            angle = "∠ —" if math.isnan(m.angle_error) else \
+                f"∠ {math.degrees(m.angle_error):.2e}° (tol {math.degrees(m.angle_tolerance):.1e}°)"
             print(f"  {'ok  ' if m.ok else 'FAIL'} {m.quantity:<16} {m.length_mm:10.3f} mm × {m.mu:<8g} = "
-                  f"{m.measured:<12.6g} exact {m.value:<12.6g} |Δ| = {m.error:.2e} (tol {m.tolerance:.1e})")
-    print(f"{total - bad} vectors within drawing precision, {bad} outside")
-    return 1 if bad else 0
+                  f"{m.measured:<12.6g} exact {m.value:<12.6g} |Δ| = {m.error:.2e} (tol {m.tolerance:.1e}) {angle}"
+                  + (f" — {m.problem}" if m.problem else ""))
+        for c in r.closures:
+            if not c.ok:
+                open_ += 1
+                print(f"  FAIL closure at {c.point}: {', '.join(c.ends)} are {c.gap_mm:.3f} mm apart "
+                      f"(tol {c.tolerance_mm:.1e} mm)")
+        for gid, n in r.equations.items():
+            equations += n
+            print(f"  {n} closure equations checked in {gid}")
+        for problem in r.problems:
+            print(f"  FAIL {problem}")
+        failed += not r.ok
+    print(f"{total - bad} vectors within drawing precision, {bad} outside; {equations} closure equations checked, "
+          f"{open_} open; {failed} of {len(paths)} files failed")
+    return 1 if failed else 0
 
 
 def _examples() -> list[Path]:
@@ -107,7 +155,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             return 0
         return _check(args.svgs)
     except PlansError as exc:
-        print(f"plans: error: {exc}", file=sys.stderr)
+        print(f"plans: error: {one_line(str(exc))}", file=sys.stderr)
         return 2
 
 

@@ -15,11 +15,27 @@ __all__ = [
     "SingularPositionError",
     "DrawingError",
     "ConstructionError",
+    "OutputError",
+    "one_line",
 ]
 
 
 class PlansError(Exception):
     """Base class of every error raised by plans."""
+
+
+def _located(message: str, file: str | None, key: str | None) -> str:
+    """``file: [key]: message``, leaving out what is not known; characters that are not
+    printable (controls, line breaks) are shown escaped, so the error stays one plain line."""
+    where = ": ".join(part for part in (file, f"[{key}]" if key else None) if part)
+    return one_line(f"{where}: {message}" if where else message)
+
+
+def one_line(text: str) -> str:
+    """``text`` with every non-printable character written as its escape (\\x01, \\n, \\u2028)."""
+    if text.isprintable():
+        return text
+    return "".join(c if c.isprintable() else repr(c)[1:-1] for c in text)
 
 
 class SceneError(PlansError, ValueError):
@@ -39,8 +55,7 @@ class SceneError(PlansError, ValueError):
         self.key = key
 
     def __str__(self) -> str:
-        where = ": ".join(part for part in (self.file, f"[{self.key}]" if self.key else None) if part)
-        return f"{where}: {self.message}" if where else self.message
+        return _located(self.message, self.file, self.key)
 
     def in_file(self, file: str) -> "SceneError":
         """The same error, located in ``file``."""
@@ -64,7 +79,7 @@ class AssemblyError(PlansError, ValueError):
 
     def __str__(self) -> str:
         parts = [p for p in (self.file, self.group, None if self.angle is None else f"at {self.angle}") if p]
-        return f"{', '.join(parts)}: {self.message}" if parts else self.message
+        return one_line(f"{', '.join(parts)}: {self.message}" if parts else self.message)
 
     def in_file(self, file: str) -> "AssemblyError":
         return type(self)(self.message, group=self.group, angle=self.angle, file=file)
@@ -82,3 +97,24 @@ class ConstructionError(PlansError, ValueError):
     """A graphical construction that cannot be drawn at this position (a degenerate one, e.g.
     Koshel's uncertain-scale plan of a group momentarily at rest); the sheet states why, the
     other sheets and positions are unaffected."""
+
+
+class OutputError(PlansError):
+    """The output cannot be written (``-o`` is a file or not writable, a folder stands where a
+    file goes, the disk is full, two scenes would write the same files). Nothing is left behind.
+
+    Parameters
+    ----------
+    message : what is wrong and how to fix it.
+    file : the path concerned (the output folder or file, or the scene).
+    key : the option or argument concerned (``-o``, ``SCENE.toml``).
+    """
+
+    def __init__(self, message: str, *, file: str | None = None, key: str | None = None):
+        super().__init__(message)
+        self.message = message
+        self.file = file
+        self.key = key
+
+    def __str__(self) -> str:
+        return _located(self.message, self.file, self.key)

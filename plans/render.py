@@ -6,8 +6,6 @@ from __future__ import annotations
 
 import json
 import math
-import os
-import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -15,13 +13,15 @@ import numpy as np
 
 from .checking import check_plan, similarity_ratio
 from .constructions import Scales, acceleration_plan, choose_scales, scheme, uncertain_plan, velocity_plan
+from .constructions.plans import Plan, PlanPoint
 from .constructions.scales import extent_of
 from .constructions.centres import centres_sheet
 from .drawing import Style, draw_centres, draw_plan, draw_scheme
-from .errors import PlansError
+from .errors import ConstructionError, PlansError
 from .kinematics import WARN_SIN, Motion, analyse, special
 from .kinematics.centres import Centres, centres
 from .model import build_mechanism
+from .output import write_files
 from .scene import Scene, read_scene
 from .structure import ComplexGroup, analyse_structure
 
@@ -47,22 +47,68 @@ def solve_scene(scene: Scene) -> Motion:
     return analyse(mech, structure, order=order)
 
 
-def _scales(scene: Scene, motion: Motion) -> Scales:
+def _scales(scene: Scene, motion: Motion, rest: tuple[bool, bool] = (False, False)) -> Scales:
+    """μl, μV, μa for a scene (no μV, μa for plans that are at rest: ``rest`` from :func:`at_rest`).
+    A scale given in [scales] that would draw off any paper or too small to see raises a
+    SceneError (key ``scales.mu_*``)."""
     mech = motion.mechanism
     pts = np.stack([motion.position(p) for p in mech.sketch], axis=1)  # (N, P, 2)
     v_ref = a_ref = None
     v_ext = a_ext = 0.0
     ref_point = mech.drive.tip if mech.drive.kind == "rotary" else mech.drive.guide.label
-    if motion.order >= 1:
+    if motion.order >= 1 and not rest[0]:
         vel = np.stack([motion.velocity(p) for p in mech.sketch], axis=1)
         v_ref = float(np.max(np.linalg.norm(motion.velocity(ref_point), axis=1)))
-        v_ext = max(max(extent_of(np.concatenate([v, [[0.0, 0.0]]]))) for v in vel)
-    if motion.order >= 2:
+        v_ext = max(_span(v) for v in vel)
+    if motion.order >= 2 and not rest[1]:
         acc = np.stack([motion.acceleration(p) for p in mech.sketch], axis=1)
         a_ref = float(np.max(np.linalg.norm(motion.acceleration(ref_point), axis=1)))
-        a_ext = max(max(extent_of(np.concatenate([a, [[0.0, 0.0]]]))) for a in acc)
+        a_ext = max(_span(a) for a in acc)
     return choose_scales(extent=extent_of(pts), v_ref=v_ref, v_extent=v_ext, a_ref=a_ref, a_extent=a_ext,
                          overrides=scene.scales)
+
+
+def _span(vectors: np.ndarray) -> float:
+    """Largest width or height of a plan drawn at scale 1: the box of vectors (P, 2) and the
+    pole (unlike extent_of, not raised to 1e-6: a plan's vectors may all be smaller)."""
+    pts = np.concatenate([vectors, [[0.0, 0.0]]])
+    return float(np.max(pts.max(axis=0) - pts.min(axis=0)))
+
+
+def at_rest(motion: Motion) -> tuple[bool, bool]:
+    """Whether every velocity, and every acceleration, is zero at every position: the drive
+    stands (ω1 = 0 or v = 0; with ε1 = 0 or a = 0 too for the accelerations), or every
+    computed vector is exactly zero."""
+    mech = motion.mechanism
+    still_v = still_a = False
+    if motion.order >= 1:
+        still_v = mech.drive.speed == 0.0 or all(not np.any(motion.velocity(p)) for p in mech.sketch)
+    if motion.order >= 2:
+        still_a = (still_v and mech.drive.rate == 0.0) or all(not np.any(motion.acceleration(p)) for p in mech.sketch)
+    return still_v, still_a
+
+
+def _empty_sheet(kind: str, *, title: str, subtitle: str, ident: str, style: Style) -> str:
+    """A plan sheet with the pole alone: the plan of a mechanism at rest (every image at the
+    pole), or a construction that cannot be drawn at this position (the subtitle says why).
+    Any scale draws it the same; μ = 1 is written."""
+    pole = "p" if kind == "velocity" else "π"
+    plan = Plan(kind=kind, mu=1.0, pole=pole, points=(PlanPoint(pole, (0.0, 0.0)),), vectors=(), lines=(),
+                similar=())
+    return draw_plan(plan, title=title, subtitle=subtitle, ident=ident, style=style)
+
+
+def _rest_note(motion: Motion, kind: str) -> str:
+    """Why a plan of ``kind`` is the pole alone: the drive stands (ω1 = 0, and ε1 = 0 for the
+    accelerations), or every computed vector is zero."""
+    d = motion.mechanism.drive
+    what = "velocities are" if kind == "velocity" else "accelerations are"
+    if d.speed != 0.0 or (kind == "acceleration" and d.rate != 0.0):
+        return f"all {what} zero at every position, every image is at the pole"
+    drive = ("ω1 = 0" if d.kind == "rotary" else "v = 0") if kind == "velocity" else \
+        ("ω1 = 0, ε1 = 0" if d.kind == "rotary" else "v = 0, a = 0")
+    what = "velocities are" if kind == "velocity" else "velocities and accelerations are"
+    return f"the mechanism is at rest ({drive}): all {what} zero, every image is at the pole"
 
 
 def _suffix(motion: Motion, i: int) -> str:
@@ -188,14 +234,19 @@ def triads(motion: Motion) -> dict:
 
 
 def render_scene(path: str | Path, style: Style = Style()) -> Rendered:
-    """Compute every file of a scene (nothing is written)."""
+    """Compute every file of a scene (nothing is written).
+
+    A mechanism at rest (the drive stands) gets, instead of each plan with nothing to draw, a
+    sheet saying so, and a warning; so does Koshel's plan where its construction degenerates
+    (:class:`~plans.errors.ConstructionError`) or fails its check. Every other sheet is drawn."""
     scene = read_scene(path)
     stem = Path(path).stem
     try:
         motion = solve_scene(scene)
+        rest = at_rest(motion)
+        scales = _scales(scene, motion, rest)
     except PlansError as exc:
         raise exc.in_file(str(path)) if hasattr(exc, "in_file") else exc
-    scales = _scales(scene, motion)
     solutions = triads(motion)
     for g, triad in solutions.items():
         worst = _disagreement(motion, triad)
@@ -204,14 +255,18 @@ def render_scene(path: str | Path, style: Style = Style()) -> Rendered:
                              f"by {worst:.2e} (relative) — please report this scene")
     files: dict[str, str] = {}
     warnings = []
+    resting = [k for k, r in zip(("velocity", "acceleration"), rest) if r and k in scene.draw]
+    if resting:
+        warnings.append(f"{stem}: {_rest_note(motion, resting[-1])}; the {' and '.join(resting)} "
+                        f"plan{'s are sheets' if len(resting) > 1 else ' is a sheet'} saying so")
     ic = centres(motion) if motion.order >= 1 else None
     formula = motion.structure.formula
+    unit = "°" if motion.mechanism.drive.kind == "rotary" else " m"
     for i in range(len(motion)):
         sfx = _suffix(motion, i)
         label = _position_label(motion, i)
         for g, s in motion.sines.items():
             if abs(s[i]) < WARN_SIN:
-                unit = "°" if motion.mechanism.drive.kind == "rotary" else " m"
                 away = singular_distance(motion, g, i)
                 where = "" if away is None else f", about {away:.3g}{unit} from it"
                 warnings.append(f"{stem}: group {g} is near a singular position at {motion.values[i]:g}{unit} "
@@ -227,32 +282,61 @@ def render_scene(path: str | Path, style: Style = Style()) -> Rendered:
                 ident=f"centres{sfx or ''}", style=style)
         if "velocity" in scene.draw:
             for g in solutions:
-                plan = uncertain_plan(motion, i, g)
-                if plan is None:
+                koshel = _koshel(motion, i, g, rest[0], title=scene.title, label=label, ident=f"koshel{sfx or ''}",
+                                 style=style)
+                if koshel is None:
                     continue
-                failures = check_plan(plan) + _similarity(motion, plan, i)
-                if failures:
-                    raise PlansError(f"{path}: Koshel's plan at {motion.values[i]:g} failed its geometric check: "
-                                     f"{failures[0]} (please report this scene)")
-                first = next(v for v in plan.vectors if v.kind == "absolute")
-                files[f"{stem}-koshel{sfx}.svg"] = draw_plan(
-                    plan, title=f"{scene.title}: velocity plan in an uncertain scale (Koshel)",
-                    subtitle=f"{label}; p{first.quantity[2:].lower()} = {first.length:g} mm ⊥ P{g.base}"
-                             f"{first.quantity[2:]} (arbitrary), then the scale from the crank pin's speed",
-                    ident=f"koshel{sfx or ''}", style=style)
-        for kind, builder, mu in (("velocity", velocity_plan, scales.mu_v), ("acceleration", acceleration_plan,
-                                                                              scales.mu_a)):
+                files[f"{stem}-koshel{sfx}.svg"], why = koshel
+                if why:
+                    warnings.append(f"{stem}: Koshel's plan at {motion.values[i]:g}{unit} is not drawn: {why}")
+        for kind, builder, mu, still in (("velocity", velocity_plan, scales.mu_v, rest[0]),
+                                         ("acceleration", acceleration_plan, scales.mu_a, rest[1])):
             if kind not in scene.draw:
+                continue
+            title = f"{scene.title}: {kind} plan"
+            if still:
+                files[f"{stem}-{kind}{sfx}.svg"] = _empty_sheet(kind, title=title, ident=f"{kind}{sfx or ''}",
+                                                                subtitle=f"{label}; {_rest_note(motion, kind)}",
+                                                                style=style)
                 continue
             plan = builder(motion, i, mu)
             failures = check_plan(plan) + _similarity(motion, plan, i)
             if failures:
                 raise PlansError(f"{path}: {kind} plan at {motion.values[i]:g} failed its geometric check: "
                                  f"{failures[0]} (please report this scene)")
-            files[f"{stem}-{kind}{sfx}.svg"] = draw_plan(plan, title=f"{scene.title}: {kind} plan",
-                                                         subtitle=label, ident=f"{kind}{sfx or ''}", style=style)
+            files[f"{stem}-{kind}{sfx}.svg"] = draw_plan(plan, title=title, subtitle=label, ident=f"{kind}{sfx or ''}",
+                                                         style=style)
     files[f"{stem}.json"] = json.dumps(report(scene, motion, scales, solutions, ic), indent=1, ensure_ascii=False) + "\n"
     return Rendered(stem, files, motion, scales, tuple(warnings))
+
+
+def _koshel(motion: Motion, i: int, g: ComplexGroup, still: bool, *, title: str, label: str, ident: str,
+            style: Style) -> tuple[str, str] | None:
+    """Koshel's sheet of class III group ``g`` at position i and why it is empty ("" when it
+    is drawn); None when the construction does not apply to the group. A construction that
+    degenerates here, or fails its check, gives a sheet that states why (the other sheets are
+    unaffected); a mechanism at rest, a sheet saying so."""
+    title = f"{title}: velocity plan in an uncertain scale (Koshel)"
+    try:
+        plan = uncertain_plan(motion, i, g)
+    except ConstructionError as exc:
+        plan, why = None, str(exc)
+    else:
+        if plan is None:
+            return None
+        failures = [] if still else check_plan(plan) + _similarity(motion, plan, i)
+        why = f"the construction failed its geometric check: {failures[0]}" if failures else ""
+    if still:       # the mechanism at rest: said once for the whole scene
+        return _empty_sheet("velocity", title=title, subtitle=f"{label}; {_rest_note(motion, 'velocity')}",
+                            ident=ident, style=style), ""
+    if why:
+        return _empty_sheet("velocity", title=title, subtitle=f"{label}; not drawn at this position: {why}",
+                            ident=ident, style=style), why
+    first = next(v for v in plan.vectors if v.kind == "absolute")
+    return draw_plan(plan, title=title,
+                     subtitle=f"{label}; p{first.quantity[2:].lower()} = {first.length:g} mm ⊥ P{g.base}"
+                              f"{first.quantity[2:]} (arbitrary), then the scale from the crank pin's speed",
+                     ident=ident, style=style), ""
 
 
 #: Largest relative difference allowed between the two solutions of a class III group.
@@ -291,18 +375,3 @@ def _similarity(motion: Motion, plan, i: int, tol: float = 1e-9) -> list[str]:
         if dev > 1e-6:
             out.append(f"images of link {link} are not similar to it (side ratios differ by {dev:.2e})")
     return out
-
-
-def write_files(files: dict[str, str], out_dir: str | Path) -> list[Path]:
-    """Write all files, each atomically (temporary file + rename)."""
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    written = []
-    for name, text in files.items():
-        target = out / name
-        fd, tmp = tempfile.mkstemp(dir=out, prefix=f".{name}.")
-        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as fh:
-            fh.write(text)
-        os.replace(tmp, target)
-        written.append(target)
-    return written

@@ -9,6 +9,8 @@ raises :class:`~plans.errors.SceneError` naming the key and the fix; nothing is 
 from __future__ import annotations
 
 import math
+import re
+import reprlib
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -16,13 +18,61 @@ from typing import Any, Mapping
 
 from .errors import SceneError
 
-__all__ = ["Scene", "Slider", "Drive", "read_scene", "parse_scene", "FRAME", "DRAWABLE"]
+__all__ = ["Scene", "Slider", "Drive", "read_scene", "parse_scene", "FRAME", "DRAWABLE", "MAX_COORD_M", "MIN_SIZE_M",
+           "MAX_ANGLE_DEG", "MAX_WALK_STEPS", "MAX_POSITIONS", "MAX_OMEGA", "MAX_EPSILON", "MAX_SPEED",
+           "MAX_ACCELERATION", "MIN_RATE", "MAX_TITLE_CHARS"]
 
 FRAME = "0"
 DRAWABLE = ("scheme", "velocity", "acceleration", "centres")
 #: What a scene draws when [plans] says nothing.
 DEFAULT_DRAW = ("scheme", "velocity", "acceleration")
 _TOP_KEYS = {"title", "description", "points", "links", "sliders", "drive", "lengths", "plans", "scales"}
+
+# --- bounds of what a scene may ask for ------------------------------------------------------
+#: Largest |coordinate| of a sketch point and largest length, m. Real linkages measure metres to
+#: tens of metres, but a construction point where two nearly parallel guides meet lies about
+#: size/angle away: 1e-13° from parallel that is ~1e16 m for a 1 m mechanism (the property tests
+#: sketch such points). 1e20 m allows them and keeps ω·r ≤ 1e26 m/s, ω²·r ≤ 1e32 m/s² and their
+#: squares (≤ 1e64, vector lengths are square roots of sums of squares) far from overflow (1e308);
+#: a mechanism scaled by 1e300, or a coordinate of 1e308, is refused.
+MAX_COORD_M = 1e20
+#: Smallest size of the sketch (its bounding-box diagonal), m: finer than any micro-mechanism,
+#: and the scale of the scheme is chosen for extents of at least 1e-6 m (extent_of).
+MIN_SIZE_M = 1e-6
+#: Largest |drive angle| and |guide angle|, degrees (about 2800 turns). Doubles near 1e6 are
+#: 1.2e-10° apart, so reducing the angle by whole turns stays exact far beyond drawing precision;
+#: near 1e20 neighbouring doubles are 16000° apart and the angle drawn would not be the one asked.
+MAX_ANGLE_DEG = 1e6
+#: Most continuation steps the solver may walk: it walks from the sketch to every requested value
+#: in 1° steps (a linear drive: size/200, see kinematics/solve.py ``_grid``), keeping every step's
+#: pose. A class III group costs ~4 ms a step, so 7200 steps (20 turns: every position a crank
+#: can take, many times over) take about 30 s; a class II mechanism, well under a second.
+MAX_WALK_STEPS = 7200
+#: Steps per sketch size of a linear drive's walk (kinematics/solve.py ``_grid``: size/200).
+LINEAR_STEPS_PER_SIZE = 200.0
+#: Most drive positions in one scene: one a degree over a turn; each writes up to five sheets.
+MAX_POSITIONS = 360
+#: Largest |ω| of a crank, rad/s (ultracentrifuges turn at ~1e4 rad/s); with lengths up to
+#: MAX_COORD_M every velocity and acceleration, and its square, is an ordinary double.
+MAX_OMEGA = 1e6
+#: Largest |ε| of a crank, rad/s² (ω² at MAX_OMEGA).
+MAX_EPSILON = 1e12
+#: Largest |velocity| of a linear drive, m/s (as ω·r at MAX_OMEGA and r = 1 m).
+MAX_SPEED = 1e6
+#: Largest |acceleration| of a linear drive, m/s² (as ω²·r at MAX_OMEGA and r = 1 m).
+MAX_ACCELERATION = 1e12
+#: Smallest nonzero |ω| or |velocity| of the drive (rad/s, m/s): one turn in 200 years. Smaller
+#: speeds give velocities whose squares underflow (|v|² < 1e-308 when |v| < 1e-154), so the
+#: plans' vector lengths would read 0; 0 itself is allowed (the mechanism at rest). The same bound
+#: holds for ε (or the drive's acceleration) of a drive at rest, then the only source of motion.
+MIN_RATE = 1e-9
+#: Longest title, characters: it is one line at the top of every sheet (200 characters of 5 mm
+#: text are already 550 mm wide, wider than an A2 sheet).
+MAX_TITLE_CHARS = 200
+
+#: Values shown in error messages are abbreviated (a nested or huge value stays one short line).
+_SHOW = reprlib.Repr()
+_SHOW.maxlevel, _SHOW.maxstring, _SHOW.maxother, _SHOW.maxlist = 3, 60, 60, 6
 
 
 @dataclass(frozen=True)
@@ -99,28 +149,117 @@ def read_scene(path: str | Path) -> Scene:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise SceneError(f"malformed TOML: {exc}; fix the syntax there", file=str(path)) from None
+    except RecursionError:   # the reader recurses once per level of nesting
+        depth, where = _nesting(text)
+        raise SceneError(f"values nested {depth} deep (more than the TOML reader can follow); a scene nests "
+                         "at most a list in a table, e.g. A = [0.1, 0.2]", file=str(path),
+                         key=_key_at(text, where)) from None
+    except ValueError:   # not a TOMLDecodeError: an integer of more than 4300 digits
+        match = _LONG_NUMBER.search(text)
+        raise SceneError("a number with thousands of digits cannot be read; write an ordinary number, e.g. 10.0",
+                         file=str(path), key=_key_at(text, match.start() if match else 0)) from None
     try:
         return parse_scene(data, file=str(path))
     except SceneError as exc:
         raise exc.in_file(str(path)) from None
 
 
+#: A run of digits longer than Python converts to an int (4300 digits).
+_LONG_NUMBER = re.compile(r"[0-9_]{4300,}")
+#: A key (bare, quoted or dotted) at the start of a line, followed by "=".
+_PART = r"""(?:[A-Za-z0-9_-]+|"[^"\n]*"|'[^'\n]*')"""
+_BARE_KEY = re.compile(rf"\s*({_PART}(?:\s*\.\s*{_PART})*)\s*=")
+#: A table header [name] or [[name]] on a line of its own.
+_HEADER = re.compile(rf"\s*\[\[?\s*({_PART}(?:\s*\.\s*{_PART})*)\s*\]\]?\s*(#.*)?$")
+
+
+def _nesting(text: str) -> tuple[int, int]:
+    """Deepest nesting of arrays and inline tables in TOML ``text`` and the offset of the value
+    (just after its ``=``) that reaches it; strings and comments are skipped, and a table header
+    (a ``[`` opening a line outside any value) is not a value. Used only when the TOML reader
+    gave up (RecursionError), to name the key."""
+    depth = best = where = start = 0
+    i, n = 0, len(text)
+    line_start = True
+    while i < n:
+        c = text[i]
+        if c in "\"'":
+            quote = text[i:i + 3] if text[i:i + 3] in ('"""', "'''") else c
+            j = i + len(quote)
+            while j < n and not text.startswith(quote, j):
+                j += 2 if c == '"' and text[j] == "\\" else 1
+            i, line_start = j + len(quote), False
+            continue
+        if c == "#":
+            while i < n and text[i] != "\n":
+                i += 1
+            continue
+        if c == "\n":
+            line_start = True
+        elif c == "=" and depth == 0:
+            start, line_start = i + 1, False
+        elif c in "[{":
+            if depth == 0 and line_start and c == "[":     # a table header: skip its line
+                while i < n and text[i] != "\n":
+                    i += 1
+                continue
+            depth += 1
+            if depth > best:
+                best, where = depth, start
+        elif c in "]}":
+            depth = max(depth - 1, 0)
+        elif not c.isspace():
+            line_start = False
+        i += 1
+    return best, where
+
+
+def _key_at(text: str, offset: int) -> str:
+    """The dotted key of the TOML statement around ``offset`` (its table and its own key)."""
+    table, key = "", ""
+    for line in text[:offset + 1].splitlines() or [""]:
+        header = _HEADER.match(line)
+        if header:
+            table, key = _unquote(header.group(1)), ""
+            continue
+        bare = _BARE_KEY.match(line)
+        if bare:
+            key = _unquote(bare.group(1))
+    return ".".join(part for part in (table, key) if part) or "(top level)"
+
+
+def _unquote(dotted: str) -> str:
+    """``a."b.c"`` → ``a.b.c``: the parts of a dotted TOML key without their quotes."""
+    return ".".join(part.strip("\"'") for part in re.findall(_PART, dotted))
+
+
 def parse_scene(data: Mapping[str, Any], *, file: str | None = None) -> Scene:
-    """Validate a scene already loaded from TOML (a mapping) and build a :class:`Scene`."""
-    unknown = sorted(set(data) - _TOP_KEYS)
+    """Validate a scene already loaded from TOML (a mapping) and build a :class:`Scene`;
+    errors name ``file`` (when given) and the key."""
+    try:
+        return _parse(data, file)
+    except SceneError as exc:
+        if file is None or exc.file:
+            raise
+        raise exc.in_file(file) from None
+
+
+def _parse(data: Mapping[str, Any], file: str | None) -> Scene:
+    if not isinstance(data, Mapping):
+        raise SceneError(f"a scene is a TOML document of tables, got {_SHOW.repr(data)}", key="(top level)")
+    unknown = sorted(str(k) for k in set(data) - _TOP_KEYS)
     if unknown:
         raise SceneError(f"unknown top-level key {unknown[0]!r}; allowed: {', '.join(sorted(_TOP_KEYS))}",
                          key=unknown[0])
-    title = data.get("title", "")
-    if not isinstance(title, str):
-        raise SceneError("title must be a string", key="title")
-    description = data.get("description", "")
-    if not isinstance(description, str):
-        raise SceneError("description must be a string", key="description")
+    title = _text(data.get("title", ""), "title", line=True)
+    if len(title) > MAX_TITLE_CHARS:
+        raise SceneError(f"title has {len(title)} characters; it is one line at the top of every sheet, keep it "
+                         f"within {MAX_TITLE_CHARS} (put the rest in description)", key="title")
+    description = _text(data.get("description", ""), "description", line=False)
     points = _points(_table(data, "points", required=True))
     links = _links(_table(data, "links", required=True), points)
     sliders = _sliders(data.get("sliders", []), points, links)
-    drive = _drive(_table(data, "drive", required=True), links, sliders)
+    drive = _drive(_table(data, "drive", required=True), links, sliders, points)
     lengths = _lengths(_table(data, "lengths"), points, links)
     draw = _draw(_table(data, "plans"))
     scales = _scales(_table(data, "scales"))
@@ -141,15 +280,60 @@ def _table(data: Mapping[str, Any], key: str, *, required: bool = False) -> Mapp
     return value
 
 
-def _number(value: Any, key: str, *, positive: bool = False) -> float:
+def _xml_invalid(c: str, *, line: bool) -> bool:
+    """Whether character ``c`` cannot appear in the SVG text (XML 1.0 forbids C0 controls but
+    tab, LF, CR; U+FFFE, U+FFFF; lone surrogates) or is an invisible control (DEL, C1); with
+    ``line`` (a name or a title: one line of a drawing) tab, LF and CR too."""
+    o = ord(c)
+    if c in "\t\n\r":
+        return line
+    return o < 0x20 or 0x7F <= o <= 0x9F or 0xD800 <= o <= 0xDFFF or o in (0xFFFE, 0xFFFF)
+
+
+def _text(value: Any, key: str, *, line: bool) -> str:
+    """A title, description or name: a string of characters a drawing can hold."""
+    if not isinstance(value, str):
+        raise SceneError(f"{key.split('.')[0]} must be a string, got {_SHOW.repr(value)}", key=key)
+    bad = next((c for c in value if _xml_invalid(c, line=line)), None)
+    if bad is not None:
+        what = "control character" if ord(bad) < 0xD800 else "character"
+        raise SceneError(f"contains the {what} U+{ord(bad):04X}, which an SVG drawing cannot hold; remove it"
+                         + (" (write a name or a title on one line)" if bad in "\t\n\r" else ""), key=key)
+    return value
+
+
+def _name(value: Any, key: str, what: str) -> str:
+    """A point or link name: a non-empty one-line string."""
+    if not isinstance(value, str):
+        raise SceneError(f"{what} names are strings: write {_quoted(value)}, got {_SHOW.repr(value)}", key=key)
+    if not value.strip():
+        raise SceneError(f"empty {what} name {value!r}; give the {what} a name, e.g. \"A\"", key=key)
+    return _text(value, key, line=True)
+
+
+def _quoted(value: Any) -> str:
+    """``value`` written as a TOML string, for messages (1 → "1")."""
+    return f'"{value}"' if isinstance(value, (int, float)) and not isinstance(value, bool) else '"NAME"'
+
+
+def _number(value: Any, key: str, *, positive: bool = False, bound: float | None = None, why: str = "") -> float:
+    """A finite number; ``bound`` (SI) limits its magnitude, ``why`` says where the bound comes from."""
     if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise SceneError(f"expected a number, got {value!r}", key=key)
-    x = float(value)
+        raise SceneError(f"expected a number, got {_SHOW.repr(value)}", key=key)
+    try:
+        x = float(value)
+    except OverflowError:       # an integer beyond the largest double
+        x = math.inf if value > 0 else -math.inf
     if not math.isfinite(x):
-        raise SceneError(f"{value!r} is not a finite number; give a real value", key=key)
+        raise SceneError(f"{_SHOW.repr(value)} is not a finite number; give a real value", key=key)
     if positive and x <= 0.0:
         raise SceneError(f"must be positive, got {x:g}", key=key)
+    if bound is not None and abs(x) > bound:
+        raise SceneError(f"{x:g} is out of range: |value| ≤ {bound:g}{why}", key=key)
     return x
+
+
+_COORD_WHY = " m (far beyond any linkage; keeps the arithmetic far from overflow)"
 
 
 def _points(table: Mapping[str, Any]) -> dict[str, tuple[float, float]]:
@@ -157,11 +341,28 @@ def _points(table: Mapping[str, Any]) -> dict[str, tuple[float, float]]:
         raise SceneError("no points given; list the sketch points as NAME = [x, y] in metres", key="points")
     points: dict[str, tuple[float, float]] = {}
     for name, xy in table.items():
-        key = f"points.{name}"
+        key = _key("points", name)
+        _name(name, key, "point")
         if not isinstance(xy, list) or len(xy) != 2:
-            raise SceneError(f"a point is [x, y] in metres, got {xy!r}", key=key)
-        points[name] = (_number(xy[0], key), _number(xy[1], key))
+            raise SceneError(f"a point is [x, y] in metres, got {_SHOW.repr(xy)}", key=key)
+        points[name] = (_number(xy[0], key, bound=MAX_COORD_M, why=_COORD_WHY),
+                        _number(xy[1], key, bound=MAX_COORD_M, why=_COORD_WHY))
+    size = _size(points)
+    if 0.0 < size < MIN_SIZE_M:
+        raise SceneError(f"the sketch is {size:.3g} m across; a mechanism must be at least {MIN_SIZE_M:g} m "
+                         "across (draw it in metres)", key="points")
     return points
+
+
+def _key(table: str, name: str) -> str:
+    """The dotted key of entry ``name`` of ``table`` (an empty name shown as "")."""
+    return f"{table}.{name}" if name else f'{table}.""'
+
+
+def _size(points: Mapping[str, tuple[float, float]]) -> float:
+    """The sketch's bounding-box diagonal, m (the mechanism's size, as in model.Mechanism.size)."""
+    xs, ys = [p[0] for p in points.values()], [p[1] for p in points.values()]
+    return math.hypot(max(xs) - min(xs), max(ys) - min(ys)) if points else 0.0
 
 
 def _links(table: Mapping[str, Any], points: Mapping[str, tuple[float, float]]) -> dict[str, tuple[str, ...]]:
@@ -169,9 +370,14 @@ def _links(table: Mapping[str, Any], points: Mapping[str, tuple[float, float]]) 
         raise SceneError('no frame: add 0 = ["O", ...] listing the fixed points', key="links")
     links: dict[str, tuple[str, ...]] = {}
     for name, pts in table.items():
-        key = f"links.{name}"
-        if not isinstance(pts, list) or not all(isinstance(p, str) for p in pts):
-            raise SceneError(f'a link is a list of point names, e.g. ["A", "B"]; got {pts!r}', key=key)
+        key = _key("links", name)
+        _name(name, key, "link")
+        if not isinstance(pts, list):
+            raise SceneError(f'a link is a list of point names, e.g. ["A", "B"]; got {_SHOW.repr(pts)}', key=key)
+        for p in pts:
+            if not isinstance(p, str):
+                raise SceneError(f"point names are strings: write {_quoted(p)}, got {_SHOW.repr(p)}; a link is a "
+                                 'list of point names, e.g. ["A", "B"]', key=key)
         if not pts:
             raise SceneError("link has no points; list at least one point it carries", key=key)
         for p in pts:
@@ -186,6 +392,16 @@ def _links(table: Mapping[str, Any], points: Mapping[str, tuple[float, float]]) 
     return links
 
 
+def _link_ref(value: Any, key: str, links: Mapping[str, Any], what: str = "link") -> str:
+    """A reference to a link of [links] by name (a string, also when the name is a number)."""
+    if isinstance(value, (int, float)) and not isinstance(value, bool) and str(value) in links:
+        raise SceneError(f"link names are strings: write {key.rsplit('.', 1)[-1]} = \"{value}\"", key=key)
+    if not isinstance(value, str) or value not in links:
+        raise SceneError(f"unknown {what} {_SHOW.repr(value)}; use a name from [links] (a string, e.g. \"1\")",
+                         key=key)
+    return value
+
+
 def _sliders(items: Any, points: Mapping[str, Any], links: Mapping[str, Any]) -> tuple[Slider, ...]:
     if not isinstance(items, list):
         raise SceneError("sliders must be an array of tables [[sliders]]", key="sliders")
@@ -194,17 +410,15 @@ def _sliders(items: Any, points: Mapping[str, Any], links: Mapping[str, Any]) ->
         key = f"sliders[{i}]"
         if not isinstance(item, Mapping):
             raise SceneError("each [[sliders]] entry must be a table", key=key)
-        extra = sorted(set(item) - {"link", "on", "through", "angle"})
+        extra = sorted(str(k) for k in set(item) - {"link", "on", "through", "angle"})
         if extra:
             raise SceneError(f"unknown key {extra[0]!r}; a slider has link, on, through, angle", key=key)
         for k in ("link", "on", "through"):
             if k not in item:
                 raise SceneError(f"missing {k!r}; a slider needs link, on and through (and angle for one point)",
                                  key=key)
-        link, on = item["link"], item["on"]
-        for k, v in (("link", link), ("on", on)):
-            if not isinstance(v, str) or v not in links:
-                raise SceneError(f"unknown link {v!r}; use a name from [links]", key=f"{key}.{k}")
+        link = _link_ref(item["link"], f"{key}.link", links)
+        on = _link_ref(item["on"], f"{key}.on", links)
         if link == on:
             raise SceneError("a link cannot slide on itself; `on` must name the guide's link", key=key)
         through = item["through"]
@@ -221,7 +435,8 @@ def _sliders(items: Any, points: Mapping[str, Any], links: Mapping[str, Any]) ->
             if "angle" not in item:
                 raise SceneError("guide direction undefined: give angle (degrees) or through = [P, Q]",
                                  key=f"{key}.angle")
-            angle = _number(item["angle"], f"{key}.angle")
+            angle = _number(item["angle"], f"{key}.angle", bound=MAX_ANGLE_DEG,
+                            why="° (a direction; write it within one turn, e.g. 30.0)")
         else:
             if "angle" in item:
                 raise SceneError("give either through = [P, Q] or one point with angle, not both", key=key)
@@ -233,14 +448,13 @@ def _sliders(items: Any, points: Mapping[str, Any], links: Mapping[str, Any]) ->
     return tuple(sliders)
 
 
-def _drive(table: Mapping[str, Any], links: Mapping[str, Any], sliders: tuple[Slider, ...]) -> Drive:
-    link = table.get("link")
-    if not isinstance(link, str) or link not in links:
-        raise SceneError(f"unknown driving link {link!r}; name a link of [links]", key="drive.link")
+def _drive(table: Mapping[str, Any], links: Mapping[str, Any], sliders: tuple[Slider, ...],
+           points: Mapping[str, tuple[float, float]]) -> Drive:
+    link = _link_ref(table.get("link"), "drive.link", links, "driving link")
     if link == FRAME:
         raise SceneError("the frame cannot be the driving link", key="drive.link")
     rotary_keys, linear_keys = {"angle", "omega", "epsilon"}, {"displacement", "velocity", "acceleration"}
-    extra = sorted(set(table) - rotary_keys - linear_keys - {"link"})
+    extra = sorted(str(k) for k in set(table) - rotary_keys - linear_keys - {"link"})
     if extra:
         raise SceneError(f"unknown key {extra[0]!r}", key=f"drive.{extra[0]}")
     if set(table) & rotary_keys and set(table) & linear_keys:
@@ -251,22 +465,62 @@ def _drive(table: Mapping[str, Any], links: Mapping[str, Any], sliders: tuple[Sl
         if not any(s.link == link and s.on == FRAME for s in sliders):
             raise SceneError(f"a linear drive needs link {link} to slide on the frame: add a [[sliders]] "
                              f'with link = "{link}", on = "0"', key="drive.link")
+        pos_bound, pos_why = MAX_COORD_M, _COORD_WHY
+        bounds = ((MAX_SPEED, "m/s"), (MAX_ACCELERATION, "m/s²"))
     else:
         kind, pos_key, speed_key, rate_key = "rotary", "angle", "omega", "epsilon"
+        pos_bound, pos_why = MAX_ANGLE_DEG, "° (about 2800 turns; beyond that a double cannot hold the angle exactly)"
+        bounds = ((MAX_OMEGA, "rad/s"), (MAX_EPSILON, "rad/s²"))
     if pos_key not in table:
         raise SceneError(f"missing {pos_key}", key=f"drive.{pos_key}")
     raw = table[pos_key]
     raw_list = raw if isinstance(raw, list) else [raw]
     if not raw_list:
         raise SceneError(f"{pos_key} list is empty; give at least one value", key=f"drive.{pos_key}")
-    values = tuple(_number(v, f"drive.{pos_key}") for v in raw_list)
+    if len(raw_list) > MAX_POSITIONS:
+        raise SceneError(f"{pos_key} lists {len(raw_list)} positions; at most {MAX_POSITIONS} (each position "
+                         "writes up to five sheets)", key=f"drive.{pos_key}")
+    values = tuple(_number(v, f"drive.{pos_key}", bound=pos_bound, why=pos_why) for v in raw_list)
     if len(set(values)) != len(values):
         raise SceneError(f"{pos_key} list repeats a value", key=f"drive.{pos_key}")
+    _walk(kind, values, points, f"drive.{pos_key}")
     if speed_key not in table:
         raise SceneError(f"missing {speed_key}", key=f"drive.{speed_key}")
-    speed = _number(table[speed_key], f"drive.{speed_key}")
-    rate = _number(table.get(rate_key, 0.0), f"drive.{rate_key}")
+    speed, rate = (_rate(table.get(k, 0.0), f"drive.{k}", bound, unit)
+                   for k, (bound, unit) in zip((speed_key, rate_key), bounds))
+    for k, x, unit, when in ((speed_key, speed, bounds[0][1], ""),
+                             (rate_key, rate if speed == 0.0 else 0.0, bounds[1][1], f" while {speed_key} = 0")):
+        if 0.0 < abs(x) < MIN_RATE:
+            raise SceneError(f"{x:g} {unit}{when} is too small to compute with: give 0 (at rest) or at least "
+                             f"{MIN_RATE:g} {unit} in magnitude", key=f"drive.{k}")
     return Drive(link=link, kind=kind, values=values, speed=speed, rate=rate)
+
+
+def _rate(value: Any, key: str, bound: float, unit: str) -> float:
+    """The drive's speed or acceleration, within ``bound`` in magnitude (0: at rest)."""
+    return _number(value, key, bound=bound, why=f" {unit} (beyond any machine; keeps velocities and accelerations "
+                                                "far from overflow)")
+
+
+def _walk(kind: str, values: tuple[float, ...], points: Mapping[str, tuple[float, float]], key: str) -> None:
+    """Refuse drive values whose continuation walk from the sketch would take more than
+    MAX_WALK_STEPS steps (kinematics/solve.py ``_grid``: a crank's walk starts within half a turn
+    of the values' median and steps 1°; a slider's starts at 0 and steps size/200)."""
+    from .kinematics.solve import STEP_DEG     # here: the kinematics package imports this module
+
+    lo, hi = min(values), max(values)
+    if kind == "rotary":
+        step, unit = STEP_DEG, "°"
+        steps = (hi - lo + 360.0) / step
+    else:
+        size = _size(points) or 1.0
+        step, unit = size / LINEAR_STEPS_PER_SIZE, " m"
+        steps = (max(hi, 0.0) - min(lo, 0.0)) / step
+    if steps > MAX_WALK_STEPS:
+        reach = (MAX_WALK_STEPS - (360.0 if kind == "rotary" else 0.0)) * step
+        raise SceneError(f"values from {lo:g} to {hi:g}{unit} need a walk of {steps:.3g} steps of {step:.3g}{unit} "
+                         f"from the sketch (the solver follows the mechanism step by step); keep them within a span of "
+                         f"{reach:.4g}{unit}" + ("" if kind == "rotary" else " including 0 (the sketch)"), key=key)
 
 
 def _lengths(table: Mapping[str, Any], points: Mapping[str, Any],
@@ -292,20 +546,20 @@ def _lengths(table: Mapping[str, Any], points: Mapping[str, Any],
         pair = frozenset((a, b))
         if pair in lengths:
             raise SceneError(f"length {a}{b} given twice", key=full)
-        lengths[pair] = _number(value, full, positive=True)
+        lengths[pair] = _number(value, full, positive=True, bound=MAX_COORD_M, why=_COORD_WHY)
     return lengths
 
 
 def _draw(table: Mapping[str, Any]) -> tuple[str, ...]:
-    extra = sorted(set(table) - {"draw"})
+    extra = sorted(str(k) for k in set(table) - {"draw"})
     if extra:
         raise SceneError(f"unknown key {extra[0]!r}; [plans] has draw", key=f"plans.{extra[0]}")
     draw = table.get("draw", list(DEFAULT_DRAW))
     if not isinstance(draw, list) or not draw:
         raise SceneError(f"draw is a non-empty list of {', '.join(DRAWABLE)}", key="plans.draw")
     for item in draw:
-        if item not in DRAWABLE:
-            raise SceneError(f"cannot draw {item!r}; choose from {', '.join(DRAWABLE)}", key="plans.draw")
+        if not isinstance(item, str) or item not in DRAWABLE:
+            raise SceneError(f"cannot draw {_SHOW.repr(item)}; choose from {', '.join(DRAWABLE)}", key="plans.draw")
     return tuple(d for d in DRAWABLE if d in draw)
 
 

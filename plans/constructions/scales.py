@@ -8,7 +8,9 @@ from typing import Mapping
 
 import numpy as np
 
-__all__ = ["SERIES", "Scales", "standard_scale", "choose_scales", "REFERENCE_MM"]
+from ..errors import SceneError
+
+__all__ = ["SERIES", "Scales", "standard_scale", "choose_scales", "REFERENCE_MM", "MAX_DRAWING_MM", "MIN_DRAWING_MM"]
 
 #: Mantissas of the standard scale series; a scale is m·10^k.
 SERIES = (1.0, 1.25, 2.0, 2.5, 4.0, 5.0, 8.0)
@@ -18,6 +20,14 @@ REFERENCE_MM = (80.0, 120.0)
 PLAN_MAX_MM = 240.0
 #: Area the scheme must fit in, mm.
 SCHEME_MM = (200.0, 140.0)
+#: Largest drawing a scale given in [scales] may make, mm: 10 m, longer than any plotter roll
+#: (an A0 sheet is 1.19 m); beyond it a sheet cannot be printed and coordinates lose their decimals.
+MAX_DRAWING_MM = 10_000.0
+#: Smallest drawing a scale given in [scales] may make, mm: a scheme or plan under 1 mm (three
+#: pen widths) cannot be read or measured.
+MIN_DRAWING_MM = 1.0
+_NAMES = {"mu_l": ("the scheme", "m/mm"), "mu_v": ("the velocity plan", "(m/s)/mm"),
+          "mu_a": ("the acceleration plan", "(m/s²)/mm")}
 
 
 @dataclass(frozen=True)
@@ -33,8 +43,10 @@ class Scales:
 
 
 def _series_values(lo: float, hi: float) -> list[float]:
+    """Series scales m·10^k from below ``lo`` to above ``hi``, each the double nearest its decimal
+    (written as text, so 1.25e-15 stays 1.25e-15 where rounding to 12 decimals gave 0)."""
     kmin, kmax = math.floor(math.log10(lo)) - 1, math.ceil(math.log10(hi)) + 1
-    return [round(m * 10.0 ** k, 12) for k in range(kmin, kmax + 1) for m in SERIES]
+    return [float(f"{m:g}e{k}") for k in range(kmin, kmax + 1) for m in SERIES]
 
 
 def standard_scale(reference: float, *, window: tuple[float, float] = REFERENCE_MM,
@@ -59,15 +71,30 @@ def choose_scales(*, extent: tuple[float, float], v_ref: float | None = None, v_
                   overrides: Mapping[str, float] | None = None) -> Scales:
     """Scales for a scene: μl so the scheme (``extent`` = width, height in m) fits the sheet,
     μV and μa so the reference vectors (crank tip velocity and acceleration) are 80–120 mm,
-    coarser when the plan would exceed its extent limit. ``overrides`` win."""
+    coarser when the plan would exceed its extent limit (``v_extent``, ``a_extent``: the
+    largest width or height of a plan, pole included, m/s and m/s²). ``overrides`` win, unless
+    they would draw larger than MAX_DRAWING_MM or smaller than MIN_DRAWING_MM: then a
+    :class:`~plans.errors.SceneError` names the scale, the size and the automatic choice."""
     overrides = overrides or {}
-    mu_l = overrides.get("mu_l") or max(fitting_scale(extent[0], SCHEME_MM[0]), fitting_scale(extent[1], SCHEME_MM[1]))
-    mu_v = mu_a = None
+    auto = {"mu_l": max(fitting_scale(extent[0], SCHEME_MM[0]), fitting_scale(extent[1], SCHEME_MM[1]))}
+    size = {"mu_l": max(extent)}
     if v_ref is not None:
-        mu_v = overrides.get("mu_v") or standard_scale(v_ref, limit=PLAN_MAX_MM, extent=v_extent)
+        auto["mu_v"], size["mu_v"] = standard_scale(v_ref, limit=PLAN_MAX_MM, extent=v_extent), v_extent
     if a_ref is not None:
-        mu_a = overrides.get("mu_a") or standard_scale(a_ref, limit=PLAN_MAX_MM, extent=a_extent)
-    return Scales(mu_l=mu_l, mu_v=mu_v, mu_a=mu_a)
+        auto["mu_a"], size["mu_a"] = standard_scale(a_ref, limit=PLAN_MAX_MM, extent=a_extent), a_extent
+    mu = dict(auto)
+    for key, value in overrides.items():
+        if key not in auto:
+            continue            # a plan that is not drawn (or at rest) needs no scale
+        drawn = size[key] / value
+        if not MIN_DRAWING_MM <= drawn <= MAX_DRAWING_MM:
+            what, unit = _NAMES[key]
+            bound = (f"more than {MAX_DRAWING_MM / 1000:g} m of paper" if drawn > MAX_DRAWING_MM
+                     else f"less than {MIN_DRAWING_MM:g} mm, too small to see")
+            raise SceneError(f"{key} = {value:g} {unit} would draw {what} {drawn:.3g} mm across, {bound}; use "
+                             f"e.g. {key} = {auto[key]:g} (the automatic choice) or leave it out", key=f"scales.{key}")
+        mu[key] = value
+    return Scales(mu_l=mu["mu_l"], mu_v=mu.get("mu_v"), mu_a=mu.get("mu_a"))
 
 
 def extent_of(points: np.ndarray) -> tuple[float, float]:

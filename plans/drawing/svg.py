@@ -6,6 +6,22 @@ same constructions always give the same bytes. Every plan vector is one ``<line>
 tail to head carrying ``data-quantity`` and ``data-value``; its arrowhead is a separate
 filled path and the visible shaft stops under the head (``stroke-dasharray``), so the
 line itself measures the whole vector.
+
+What ``plans check`` reads (:mod:`plans.checking`), on every tagged ``<line>``:
+
+- ``data-quantity`` — the tag (``v:B``, ``a:B/A:n``, ``r:B/P3`` …);
+- ``data-value`` — the exact magnitude, SI (a finite number ≥ 0);
+- ``data-direction`` — the exact direction of the vector, tail → head, in degrees in the
+  SVG paper frame (x right, y down, so positive angles turn clockwise on the screen):
+  ``(x2 − x1, y2 − y1)`` is parallel to ``(cos θ, sin θ)`` up to rounding;
+- ``data-from`` / ``data-to`` — the labels of the images (points) the vector joins, as
+  printed on the sheet (``p``, ``a``, ``a3``, ``n_BA``, ``k_A3A2``; centres ``P3``); two
+  ends with one label are one point, so the vector equations close graphically.
+
+and on each plan's ``<g>``: ``data-mu`` (scale), ``data-plan`` (velocity, acceleration,
+centres, scheme) and, but on the scheme, ``data-vectors`` (how many tagged vectors it
+holds; "0": a plan drawn as the pole alone). The root ``data-precision`` states the
+writer's rounding (mm); the checker takes its tolerance from its own rules, never from it.
 """
 
 from __future__ import annotations
@@ -53,6 +69,36 @@ class _Paper:
     def xy(self, p: Sequence[float]) -> tuple[str, str]:
         q = self(p)
         return self.f(q[0]), self.f(q[1])
+
+
+#: Two plan images closer than this (mm) are one point for ``data-from``/``data-to``; the
+#: pole is matched first, so a fixed point's image (at the pole) is labelled as the pole.
+SAME_IMAGE_MM = 1e-9
+
+
+def _direction(paper: _Paper, tail, head) -> str:
+    """The exact direction tail → head in degrees, SVG paper frame (y down)."""
+    (x0, y0), (x1, y1) = paper(tail), paper(head)
+    return repr(math.degrees(math.atan2(y1 - y0, x1 - x0)) + 0.0)
+
+
+def _image_label(plan: Plan, xy) -> str | None:
+    """The label of the plan image at ``xy`` (the first within SAME_IMAGE_MM: the pole first)."""
+    for p in plan.points:
+        if math.hypot(p.xy[0] - xy[0], p.xy[1] - xy[1]) <= SAME_IMAGE_MM:
+            return p.label
+    return None
+
+
+def _tag(el, paper: _Paper, quantity: str, value: float, tail, head, start: str | None, end: str | None) -> None:
+    """The attributes ``plans check`` measures a vector by (see the module docstring)."""
+    el.attribs["data-quantity"] = quantity
+    el.attribs["data-value"] = repr(float(value))
+    el.attribs["data-direction"] = _direction(paper, tail, head)
+    if start is not None:
+        el.attribs["data-from"] = start
+    if end is not None:
+        el.attribs["data-to"] = end
 
 
 def _drawing(paper: _Paper, ident: str) -> svgwrite.Drawing:
@@ -136,6 +182,7 @@ def draw_plan(plan: Plan, *, title: str, subtitle: str, ident: str, style: Style
     g = dwg.g(id=f"{ident}-plan")
     g.attribs["data-mu"] = repr(plan.mu)
     g.attribs["data-plan"] = plan.kind
+    g.attribs["data-vectors"] = str(len(plan.vectors))
     lines = dwg.g(id=f"{ident}-construction", stroke=style.construction_colour, stroke_width=fmt(style.thin, 3),
                   stroke_dasharray=style.dash, fill="none")
     for k, l in enumerate(plan.lines):
@@ -150,8 +197,7 @@ def draw_plan(plan: Plan, *, title: str, subtitle: str, ident: str, style: Style
         shaft = max(v.length - min(style.arrow_length, 0.5 * v.length) * 0.8, 0.0)
         el = dwg.line(start=(x1, y1), end=(x2, y2), id=f"{ident}-v{k}", stroke=colour,
                       stroke_width=fmt(style.vector, 3), stroke_dasharray=f"{fmt(shaft, 3)} {fmt(v.length + 1, 3)}")
-        el.attribs["data-quantity"] = v.quantity
-        el.attribs["data-value"] = repr(v.value)
+        _tag(el, paper, v.quantity, v.value, v.tail, v.head, _image_label(plan, v.tail), _image_label(plan, v.head))
         g.add(el)
         g.add(dwg.path(d=_arrow_head(paper, v.tail, v.head), fill=colour, stroke="none", id=f"{ident}-h{k}"))
     labels = dwg.g(id=f"{ident}-labels", fill=style.colour)
@@ -221,10 +267,11 @@ def draw_centres(sheet: CentresSheet, *, title: str, subtitle: str, formula: str
               stroke_dasharray=style.dash, fill="none")
     g.attribs["data-mu"] = repr(sheet.mu_l)
     g.attribs["data-plan"] = "centres"
+    g.attribs["data-vectors"] = str(len(sheet.rays))
     for k, r in enumerate(sheet.rays):
         el = dwg.line(start=paper.xy(r.start), end=paper.xy(r.end), id=f"{ident}-r{k}")
-        el.attribs["data-quantity"] = r.quantity
-        el.attribs["data-value"] = repr(r.value)
+        point, _, centre = r.quantity.partition(":")[2].partition("/")
+        _tag(el, paper, r.quantity, r.value, r.start, r.end, centre, point)
         g.add(el)
     dwg.add(g)
     labels = dwg.g(id=f"{ident}-marks", fill=style.component_colour)
