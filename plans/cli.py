@@ -10,7 +10,6 @@ from typing import Sequence
 
 import numpy as np
 
-from .checking import check_svg
 from .errors import OutputError, PlansError, one_line
 from .output import check_folder, write_files
 from .render import Rendered, render_scene

@@ -112,9 +112,14 @@ def _rest_note(motion: Motion, kind: str) -> str:
 
 
 def _suffix(motion: Motion, i: int) -> str:
+    """``-30``, ``-m22.5`` (m for minus) after a sheet's name when several positions are
+    drawn: the drive's value with as few digits as keep every position's name distinct
+    (6 significant digits, more when two values would print alike, e.g. 10.0000001)."""
     if len(motion) == 1:
         return ""
-    return "-" + f"{motion.values[i]:g}".replace("-", "m")
+    values = [float(v) for v in motion.values]
+    digits = next(d for d in range(6, 18) if len({f"{v:.{d}g}" for v in values}) == len(values))
+    return "-" + f"{values[i]:.{digits}g}".replace("-", "m")
 
 
 def _position_label(motion: Motion, i: int) -> str:

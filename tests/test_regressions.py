@@ -225,3 +225,14 @@ def test_limited_crank_asked_for_angles_on_both_sides_of_its_sketch():
             assert np.array_equal(f("B")[i], getattr(alone, f.__name__)("B")[0])
     # 330° is reached downwards from the sketch, as −30°, on the sketch's branch (B above OC)
     assert both.position("B")[0][1] > 0 and both.position("B")[1][1] > 0
+
+
+def test_angles_that_print_alike_get_their_own_sheets(tmp_path):
+    """10.0000001° and 10.0000002° once both wrote `-10.svg`, the second over the first."""
+    data = _example("four_bar")
+    data["drive"]["angle"] = [10.0000001, 10.0000002, 30.0]
+    data["plans"] = {"draw": ["velocity"]}
+    report = render_and_check(tmp_path, data, "alike")
+    names = sorted(p.name for p in (tmp_path / "alike-out").glob("*.svg"))
+    assert names == ["alike-velocity-10.0000001.svg", "alike-velocity-10.0000002.svg", "alike-velocity-30.svg"]
+    assert len(report["positions"]) == 3
