@@ -141,6 +141,9 @@ def _example(stem: str) -> dict:
 
 CLASHES = {
     "oscillating cylinder, P": (oscillating_cylinder, {}),
+    # the Whitworth, refused at every angle with "v:R/P … failed its geometric check":
+    # its block pin P got the pole's image
+    "Whitworth, block pin P, lever end R": (whitworth, {"A": "P", "C": "R"}),
     "oscillating cylinder, π Π p": (oscillating_cylinder, {"O": "π", "A": "Π", "C": "p"}),
     "four-bar, p a A S1": (lambda: _example("four_bar"), {"O": "p", "A": "a", "B": "A", "M": "S1"}),
     "quick-return, P k_D3D2 n_ED": (lambda: _example("quick_return"), {"C": "P", "A": "k_A3A2", "E": "n_ED"}),
