@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 import math
+import textwrap
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -88,14 +89,19 @@ def at_rest(motion: Motion) -> tuple[bool, bool]:
     return still_v, still_a
 
 
-def _empty_sheet(kind: str, *, title: str, subtitle: str, ident: str, style: Style) -> str:
+def _empty_sheet(kind: str, *, title: str, subtitle: str, why: str, ident: str, style: Style) -> str:
     """A plan sheet with the pole alone: the plan of a mechanism at rest (every image at the
-    pole), or a construction that cannot be drawn at this position (the subtitle says why).
-    Any scale draws it the same; μ = 1 is written."""
+    pole), or a construction that cannot be drawn at this position; ``why`` is written below
+    it, wrapped to the sheet. Any scale draws it the same; μ = 1 is written."""
     pole = "p" if kind == "velocity" else "π"
     plan = Plan(kind=kind, mu=1.0, pole=pole, points=(PlanPoint(pole, (0.0, 0.0)),), vectors=(), lines=(),
                 similar=())
-    return draw_plan(plan, title=title, subtitle=subtitle, ident=ident, style=style)
+    return draw_plan(plan, title=title, subtitle=subtitle, ident=ident, style=style,
+                     notes=tuple(textwrap.wrap(why, NOTE_CHARS)))
+
+
+#: Characters per line of a note under an empty plan (small text on the narrowest sheet).
+NOTE_CHARS = 90
 
 
 def _rest_note(motion: Motion, kind: str) -> str:
@@ -301,7 +307,7 @@ def render_scene(path: str | Path, style: Style = Style()) -> Rendered:
             title = f"{scene.title}: {kind} plan"
             if still:
                 files[f"{stem}-{kind}{sfx}.svg"] = _empty_sheet(kind, title=title, ident=f"{kind}{sfx or ''}",
-                                                                subtitle=f"{label}; {_rest_note(motion, kind)}",
+                                                                subtitle=label, why=_rest_note(motion, kind),
                                                                 style=style)
                 continue
             plan = builder(motion, i, mu)
@@ -332,11 +338,11 @@ def _koshel(motion: Motion, i: int, g: ComplexGroup, still: bool, *, title: str,
         failures = [] if still else check_plan(plan) + _similarity(motion, plan, i)
         why = f"the construction failed its geometric check: {failures[0]}" if failures else ""
     if still:       # the mechanism at rest: said once for the whole scene
-        return _empty_sheet("velocity", title=title, subtitle=f"{label}; {_rest_note(motion, 'velocity')}",
+        return _empty_sheet("velocity", title=title, subtitle=label, why=_rest_note(motion, "velocity"),
                             ident=ident, style=style), ""
     if why:
-        return _empty_sheet("velocity", title=title, subtitle=f"{label}; not drawn at this position: {why}",
-                            ident=ident, style=style), why
+        return _empty_sheet("velocity", title=title, subtitle=f"{label}; not drawn at this position",
+                            why=why, ident=ident, style=style), why
     first = next(v for v in plan.vectors if v.kind == "absolute")
     return draw_plan(plan, title=title,
                      subtitle=f"{label}; p{first.quantity[2:].lower()} = {first.length:g} mm ⊥ P{g.base}"

@@ -207,7 +207,8 @@ def test_triad_at_rest_keeps_every_other_sheet(tmp_path, capsys):
     for kind in ("scheme", "velocity", "acceleration", "centres", "koshel"):
         for s in sfx:
             assert (out / f"rest-{kind}-{s}.svg").exists(), (kind, s)
-    assert "at rest" in (out / f"rest-koshel-{sfx[1]}.svg").read_text(encoding="utf-8")
+    sheet = (out / f"rest-koshel-{sfx[1]}.svg").read_text(encoding="utf-8")
+    assert "at rest" in sheet and "|v_B|" in sheet      # the note is written as is, not as subscripts
     measured = [str(p) for p in sorted(out.glob("*.svg")) if p.name != f"rest-koshel-{sfx[1]}.svg"]
     assert main(["check", *measured]) == 0
 

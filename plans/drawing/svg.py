@@ -111,15 +111,17 @@ def _drawing(paper: _Paper, ident: str) -> svgwrite.Drawing:
 
 
 def _text(dwg: svgwrite.Drawing, paper: _Paper, at: tuple[float, float], label: str, *, size: float,
-          italic: bool = True, anchor: str = "middle", ident: str | None = None, paper_xy: bool = False):
-    """A label; ``name_sub`` is written with the part after '_' as a subscript."""
+          italic: bool = True, anchor: str = "middle", ident: str | None = None, paper_xy: bool = False,
+          subscript: bool = True):
+    """A label; with ``subscript``, ``name_sub`` is written with the part after '_' as a
+    subscript (image labels such as n_BA); titles and notes are written as they are."""
     x, y = (at if paper_xy else paper(at))
     t = dwg.text("", insert=(paper.f(x), paper.f(y)), font_size=fmt(size, 2), text_anchor=anchor,
                  font_family=paper.style.font, font_style="italic" if italic else "normal", stroke="none",
                  fill=paper.style.colour)
     if ident:
         t.attribs["id"] = ident
-    main, _, sub = label.partition(_SUBSCRIPT_SPLIT)
+    main, _, sub = label.partition(_SUBSCRIPT_SPLIT) if subscript else (label, "", "")
     t.add(dwg.tspan(main))
     if sub:
         t.add(dwg.tspan(sub, font_size=fmt(size * 0.7, 2), dy=[fmt(size * 0.3, 2)]))
@@ -148,9 +150,10 @@ def _header(dwg: svgwrite.Drawing, paper: _Paper, title: str, subtitle: str, ide
     """Title and subtitle, centred at the top of the sheet."""
     s = paper.style
     head = dwg.g(id=f"{ident}-head")
-    head.add(_text(dwg, paper, (paper.width / 2, s.margin + 2), title, size=s.title_text, italic=False, paper_xy=True))
+    head.add(_text(dwg, paper, (paper.width / 2, s.margin + 2), title, size=s.title_text, italic=False, paper_xy=True,
+                   subscript=False))
     head.add(_text(dwg, paper, (paper.width / 2, s.margin + 8), subtitle, size=s.small_text, italic=False,
-                   paper_xy=True))
+                   paper_xy=True, subscript=False))
     return head
 
 
@@ -158,9 +161,10 @@ def _legend(dwg: svgwrite.Drawing, paper: _Paper, ident: str, *rows: tuple[str, 
     """Lines of text (text, height) at the bottom left of the sheet."""
     s = paper.style
     foot = dwg.g(id=f"{ident}-legend")
-    y = paper.height - s.footer + 8
+    y = paper.height - s.footer + 8 - 6 * max(0, len(rows) - 2)   # more than two rows: the sheet grew for them
     for k, (text, size) in enumerate(rows):
-        foot.add(_text(dwg, paper, (s.margin, y + 6 * k), text, size=size, italic=False, anchor="start", paper_xy=True))
+        foot.add(_text(dwg, paper, (s.margin, y + 6 * k), text, size=size, italic=False, anchor="start", paper_xy=True,
+                       subscript=False))
     return foot
 
 
@@ -173,10 +177,15 @@ def _unit(mu_kind: str) -> str:
     return {"velocity": "(m/s)/mm", "acceleration": "(m/s²)/mm", "scheme": "m/mm"}[mu_kind]
 
 
-def draw_plan(plan: Plan, *, title: str, subtitle: str, ident: str, style: Style = Style()) -> str:
-    """SVG text of a velocity or acceleration plan."""
+def draw_plan(plan: Plan, *, title: str, subtitle: str, ident: str, style: Style = Style(),
+              notes: Sequence[str] = ()) -> str:
+    """SVG text of a velocity or acceleration plan; ``notes``: lines of text under it (why a
+    plan is drawn as its pole alone)."""
     coords = [p.xy for p in plan.points] + [l.start for l in plan.lines] + [l.end for l in plan.lines]
-    paper = _Paper(_bbox(coords), style, width_min=_title_width(title, style))
+    paper = _Paper(_bbox(coords), style, width_min=max(_title_width(title, style),
+                                                         _title_width(subtitle, style) * style.small_text
+                                                         / style.title_text))
+    paper.height += 6.0 * len(notes)
     dwg = _drawing(paper, ident)
     dwg.add(_header(dwg, paper, title, subtitle, ident))
     g = dwg.g(id=f"{ident}-plan")
@@ -208,7 +217,8 @@ def draw_plan(plan: Plan, *, title: str, subtitle: str, ident: str, style: Style
             continue  # images that coincide (fixed points at the pole) get one label
         placed.append(p.xy)
         away = np.subtract(p.xy, centre)
-        away = away / (np.linalg.norm(away) or 1.0)
+        norm = float(np.linalg.norm(away))
+        away = away / norm if norm > 1e-9 else np.array([0.6, 0.8])   # a lone image: label up and right
         at = (p.xy[0] + 3.2 * away[0], p.xy[1] + 3.2 * away[1] - 1.2)
         labels.add(_text(dwg, paper, at, p.label, size=style.text, ident=f"{ident}-l{k}"))
         labels.add(dwg.circle(center=paper.xy(p.xy), r=fmt(0.45, 2), id=f"{ident}-d{k}"))
@@ -216,8 +226,12 @@ def draw_plan(plan: Plan, *, title: str, subtitle: str, ident: str, style: Style
     dwg.add(g)
     unit = _unit(plan.kind)
     sym = "μV" if plan.kind == "velocity" else "μa"
-    dwg.add(_legend(dwg, paper, ident, (f"{sym} = {plan.mu:g} {unit}", style.text),
-                    (f"pole {plan.pole}; every vector = drawn length × {sym}", style.small_text)))
+    if plan.vectors:
+        dwg.add(_legend(dwg, paper, ident, (f"{sym} = {plan.mu:g} {unit}", style.text),
+                        (f"pole {plan.pole}; every vector = drawn length × {sym}", style.small_text)))
+    else:
+        dwg.add(_legend(dwg, paper, ident, *((n, style.small_text) for n in notes),
+                        (f"pole {plan.pole} alone: no vector to draw, no scale {sym}", style.text)))
     return dwg.tostring()
 
 
