@@ -38,15 +38,8 @@ def one_line(text: str) -> str:
     return "".join(c if c.isprintable() else repr(c)[1:-1] for c in text)
 
 
-class SceneError(PlansError, ValueError):
-    """The scene file is malformed or inconsistent.
-
-    Parameters
-    ----------
-    message : what is wrong and how to fix it.
-    file : the scene file, when known.
-    key : dotted key path inside the scene (e.g. ``links.2`` or ``drive.omega``).
-    """
+class _Located(PlansError):
+    """An error at a place: ``file: [key]: message``, one line."""
 
     def __init__(self, message: str, *, file: str | None = None, key: str | None = None):
         super().__init__(message)
@@ -56,6 +49,17 @@ class SceneError(PlansError, ValueError):
 
     def __str__(self) -> str:
         return _located(self.message, self.file, self.key)
+
+
+class SceneError(_Located, ValueError):
+    """The scene file is malformed or inconsistent.
+
+    Parameters
+    ----------
+    message : what is wrong and how to fix it.
+    file : the scene file, when known.
+    key : dotted key path inside the scene (e.g. ``links.2`` or ``drive.omega``).
+    """
 
     def in_file(self, file: str) -> "SceneError":
         """The same error, located in ``file``."""
@@ -99,7 +103,7 @@ class ConstructionError(PlansError, ValueError):
     other sheets and positions are unaffected."""
 
 
-class OutputError(PlansError):
+class OutputError(_Located):
     """The output cannot be written (``-o`` is a file or not writable, a folder stands where a
     file goes, the disk is full, two scenes would write the same files). Nothing is left behind.
 
@@ -109,12 +113,3 @@ class OutputError(PlansError):
     file : the path concerned (the output folder or file, or the scene).
     key : the option or argument concerned (``-o``, ``SCENE.toml``).
     """
-
-    def __init__(self, message: str, *, file: str | None = None, key: str | None = None):
-        super().__init__(message)
-        self.message = message
-        self.file = file
-        self.key = key
-
-    def __str__(self) -> str:
-        return _located(self.message, self.file, self.key)

@@ -1,5 +1,7 @@
+import math
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 EXAMPLES = sorted((Path(__file__).resolve().parent.parent / "plans" / "examples").glob("*.toml"))
@@ -15,3 +17,37 @@ def rendered(tmp_path_factory):
     out = tmp_path_factory.mktemp("render")
     assert main(["render", *map(str, EXAMPLES), "-o", str(out), "-q"]) == 0
     return out
+
+
+def _toml_string(s: str) -> str:
+    """A TOML basic string; quotes, backslashes and control characters escaped."""
+    out = []
+    for c in s:
+        if c in '"\\':
+            out.append("\\" + c)
+        elif ord(c) < 0x20 or ord(c) == 0x7F:
+            out.append(f"\\u{ord(c):04x}")
+        else:
+            out.append(c)
+    return '"' + "".join(out) + '"'
+
+
+def _toml_value(v) -> str:
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, (int, np.integer)):
+        return repr(int(v))
+    if isinstance(v, (float, np.floating)):
+        x = float(v)
+        return repr(x) if math.isfinite(x) else "nan" if x != x else "inf" if x > 0 else "-inf"
+    if isinstance(v, str):
+        return _toml_string(v)
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
+    return "{" + ", ".join(f"{_toml_string(k)} = {_toml_value(x)}" for k, x in v.items()) + "}"
+
+
+def toml_text(data: dict) -> str:
+    """A scene dict written as TOML that tomllib reads back equal: every top-level key on one
+    line ``"key" = value`` (inline tables, arrays of inline tables for [[sliders]])."""
+    return "".join(f"{_toml_string(k)} = {_toml_value(v)}\n" for k, v in data.items())

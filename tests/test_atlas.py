@@ -26,6 +26,7 @@ import pytest
 from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 
+from conftest import toml_text
 from plans.cli import main
 from plans.kinematics import analyse
 from plans.model import build_mechanism
@@ -78,20 +79,6 @@ ATLAS = {
     "watt_six_bar": Entry(II_II),
     "whitworth": Entry(II_II),
 }
-
-
-def toml_text(data: dict) -> str:
-    """A scene dict (as read by tomllib) written back as TOML."""
-    lines = [f"title = {json.dumps(data.get('title', 'scene'), ensure_ascii=False)}"]
-    for table in ("points", "links", "drive", "lengths", "plans", "scales"):
-        if table in data:
-            lines.append(f"[{table}]")
-            lines += [f"{json.dumps(k, ensure_ascii=False)} = {json.dumps(v, ensure_ascii=False)}"
-                      for k, v in data[table].items()]
-    for s in data.get("sliders", []):
-        lines.append("[[sliders]]")
-        lines += [f"{k} = {json.dumps(v, ensure_ascii=False)}" for k, v in s.items()]
-    return "\n".join(lines) + "\n"
 
 
 def load(stem: str) -> dict:

@@ -12,7 +12,6 @@ import dataclasses
 import errno
 import io
 import json
-import math
 import os
 import stat
 import tomllib
@@ -30,7 +29,7 @@ from plans.errors import ConstructionError, PlansError, SceneError
 from plans.scene import (MAX_ANGLE_DEG, MAX_COORD_M, MAX_OMEGA, MAX_WALK_STEPS, MIN_RATE, MIN_SIZE_M, Scene,
                          parse_scene, read_scene)
 
-from conftest import CRANK_SLIDER, EXAMPLES
+from conftest import CRANK_SLIDER, EXAMPLES, toml_text
 
 GOOD = CRANK_SLIDER.read_text(encoding="utf-8")
 #: The same crank-slider driven by its slider (a linear drive).
@@ -136,7 +135,7 @@ def test_linear_rates_out_of_range(tmp_path, capsys, old, new, key):
     ("angle = 1e20", f"≤ {MAX_ANGLE_DEG:g}°"),
     ("angle = [-1e308, 1e308]", "out of range"),
     ("angle = [0, 1e12]", "out of range"),
-    ("angle = [0.0, 2e5]", f"steps"),
+    ("angle = [0.0, 2e5]", "steps"),
     ("angle = [-5e5, 5e5]", "steps"),
 ])
 def test_drive_angles_out_of_range(tmp_path, capsys, new, needle):
@@ -579,36 +578,6 @@ def scenes(draw) -> dict:
         else:
             parent[place[-1]] = draw(_VALUE)
     return data
-
-
-def _toml_string(s: str) -> str:
-    out = []
-    for c in s:
-        if c in '"\\':
-            out.append("\\" + c)
-        elif ord(c) < 0x20 or ord(c) == 0x7F:
-            out.append(f"\\u{ord(c):04x}")
-        else:
-            out.append(c)
-    return '"' + "".join(out) + '"'
-
-
-def _toml_value(v) -> str:
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, (int, float)):
-        return repr(v) if not isinstance(v, float) or math.isfinite(v) else ("nan" if v != v else
-                                                                            ("inf" if v > 0 else "-inf"))
-    if isinstance(v, str):
-        return _toml_string(v)
-    if isinstance(v, list):
-        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
-    return "{" + ", ".join(f"{_toml_string(k)} = {_toml_value(x)}" for k, x in v.items()) + "}"
-
-
-def toml_text(data: dict) -> str:
-    """Every top-level key as one line ``"key" = value`` (inline tables and arrays)."""
-    return "".join(f"{_toml_string(k)} = {_toml_value(v)}\n" for k, v in data.items())
 
 
 def _one_line_naming(exc: PlansError, file: str | None) -> None:

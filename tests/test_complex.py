@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 from shapely.geometry import LineString, Point
 
-from conftest import EXAMPLES
+from conftest import EXAMPLES, toml_text
 from reference import Reference
 from plans.checking import check_plan
 from plans.cli import main
@@ -362,22 +362,10 @@ def test_triad_with_a_sliding_rod_matches_the_reference_and_renders(tmp_path):
     data["drive"]["angle"] = values.tolist()
     data["plans"] = {"draw": ["scheme", "velocity", "acceleration", "centres"]}
     scene = tmp_path / "sliding_rod.toml"
-    scene.write_text(_toml(data), encoding="utf-8")
+    scene.write_text(toml_text(data), encoding="utf-8")
     out = tmp_path / "out"
     assert main(["render", str(scene), "-o", str(out), "-q"]) == 0
     svgs = sorted(str(p) for p in out.glob("*.svg"))
     assert len(svgs) == 12 * 5          # scheme, velocity, acceleration, centres and Koshel's sheet
     assert main(["check", *svgs]) == 0
 
-
-def _toml(data: dict) -> str:
-    """A scene dict as TOML text (strings, numbers, lists, [[sliders]])."""
-    lines = [f"title = {json.dumps(data.get('title', 'scene'))}"]
-    for table in ("points", "links", "drive", "plans"):
-        if table in data:
-            lines.append(f"[{table}]")
-            lines += [f"{json.dumps(k)} = {json.dumps(v)}" for k, v in data[table].items()]
-    for s in data.get("sliders", []):
-        lines.append("[[sliders]]")
-        lines += [f"{k} = {json.dumps(v)}" for k, v in s.items()]
-    return "\n".join(lines) + "\n"

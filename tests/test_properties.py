@@ -48,8 +48,9 @@ import pytest
 from hypothesis import event as _event, example, given, settings, strategies as st
 from hypothesis.control import currently_in_test_context
 
+from conftest import toml_text
 from plans.checking import check_svg
-from plans.errors import AssemblyError, PlansError, SingularPositionError
+from plans.errors import AssemblyError, SingularPositionError
 from plans.kinematics import analyse
 from plans.model import build_mechanism
 from plans.render import render_scene
@@ -969,40 +970,12 @@ def test_rpp_at_parallel(case):
 
 # --- drawings: every plan of a random mechanism passes `plans check` --------------------------------
 
-def _toml_value(v) -> str:
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, (int, float, np.floating)):
-        x = float(v)
-        assert math.isfinite(x)
-        return repr(x)
-    if isinstance(v, str):
-        return json.dumps(v, ensure_ascii=False)
-    if isinstance(v, (list, tuple)):
-        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
-    raise TypeError(f"cannot write {v!r} to TOML")
-
-
-def to_toml(scene: dict) -> str:
-    """A scene dict as TOML (scalars, tables of scalars and lists, arrays of tables)."""
-    top, tables, arrays = [], [], []
-    for key, value in scene.items():
-        if isinstance(value, dict):
-            tables.append(f"[{key}]\n" + "".join(f"{json.dumps(k)} = {_toml_value(v)}\n" for k, v in value.items()))
-        elif isinstance(value, list) and value and isinstance(value[0], dict):
-            arrays += [f"[[{key}]]\n" + "".join(f"{json.dumps(k)} = {_toml_value(v)}\n" for k, v in item.items())
-                       for item in value]
-        else:
-            top.append(f"{key} = {_toml_value(value)}\n")
-    return "".join(top) + "\n" + "\n".join(tables + arrays)
-
-
 def test_toml_writer_round_trips():
     import tomllib
 
     case = build_rrp(r=0.1, alpha=0.2, e=-0.01, rod=0.3, phi=1.0, branch=1.0, coupler=(0.5, 0.2), omega=-7.0,
                      epsilon=1e-05)
-    assert tomllib.loads(to_toml(case.scene)) == case.scene
+    assert tomllib.loads(toml_text(case.scene)) == case.scene
 
 
 def check_drawings(case: Case) -> None:
@@ -1014,7 +987,7 @@ def check_drawings(case: Case) -> None:
     scene = dict(case.scene, plans={"draw": ["scheme", "velocity", "acceleration"]})
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "random.toml"
-        path.write_text(to_toml(scene), encoding="utf-8")
+        path.write_text(toml_text(scene), encoding="utf-8")
         rendered = render_scene(path)
         svgs = {name: text for name, text in rendered.files.items() if name.endswith(".svg")}
         assert {n.split("-")[1].split(".")[0] for n in svgs} == {"scheme", "velocity", "acceleration"}

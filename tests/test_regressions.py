@@ -12,6 +12,7 @@ import math
 import numpy as np
 import pytest
 
+from conftest import toml_text
 from plans.cli import main
 from plans.constructions import acceleration_plan, velocity_plan
 from plans.kinematics import analyse
@@ -20,20 +21,6 @@ from plans.scene import parse_scene
 from plans.structure import analyse_structure
 
 TWELVE = [15.0 + 30.0 * k for k in range(12)]
-
-
-def toml_text(data: dict) -> str:
-    """A scene dict as TOML (strings, numbers and lists; [[sliders]] tables)."""
-    lines = [f"title = {json.dumps(data.get('title', 'scene'), ensure_ascii=False)}"]
-    for table in ("points", "links", "drive", "lengths", "plans", "scales"):
-        if table in data:
-            lines.append(f"[{table}]")
-            lines += [f"{json.dumps(k, ensure_ascii=False)} = {json.dumps(v, ensure_ascii=False)}"
-                      for k, v in data[table].items()]
-    for s in data.get("sliders", []):
-        lines.append("[[sliders]]")
-        lines += [f"{k} = {json.dumps(v, ensure_ascii=False)}" for k, v in s.items()]
-    return "\n".join(lines) + "\n"
 
 
 def render_and_check(tmp_path, data: dict, name: str = "scene") -> dict:
