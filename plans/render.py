@@ -336,7 +336,8 @@ def _koshel(motion: Motion, i: int, g: ComplexGroup, still: bool, *, title: str,
         if plan is None:
             return None
         failures = [] if still else check_plan(plan) + _similarity(motion, plan, i)
-        why = f"the construction failed its geometric check: {failures[0]}" if failures else ""
+        why = f"the construction failed its geometric check: {failures[0]} (please report this scene)" \
+            if failures else ""
     if still:       # the mechanism at rest: said once for the whole scene
         return _empty_sheet("velocity", title=title, subtitle=label, why=_rest_note(motion, "velocity"),
                             ident=ident, style=style), ""

@@ -147,6 +147,7 @@ def test_scene_over_its_range_renders_and_checks(tmp_path, stem):
     out = tmp_path / "out"
     code, _, err = run(["render", str(scene), "-o", str(out), "-q"])
     assert code == 0, f"{stem} at {values}: {err.strip()}"
+    assert "please report" not in err and "Traceback" not in err, err
     report = json.loads((out / f"{stem}.json").read_text(encoding="utf-8"))
     assert report["structure"]["dof"] == 1
     assert report["structure"]["formula"] == ATLAS[stem].formula
@@ -229,6 +230,7 @@ def _property(stem: str):
                 assert not out.exists() or not any(out.iterdir()), "an error must write no files"
                 return
             assert code == 0, f"exit {code}: {err}\n{text}"
+            assert "please report" not in err and "Traceback" not in err, f"{err}\n{text}"
             svgs = sorted(str(p) for p in out.glob("*.svg"))
             assert svgs
             code, report, _ = run(["check", *svgs])
