@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 from importlib import resources
 from pathlib import Path
@@ -84,9 +85,7 @@ def _check(paths: Sequence[str]) -> int:
     """Lengths, directions, closures and the file contract of each SVG (plans.checking);
     exit 1 when anything fails, a plan without tagged vectors included; a scheme sheet has
     nothing to measure and passes."""
-    import math
-
-    from .checking import inspect_svg
+    from .checking import inspect_svg   # here: render and demo need none of it
 
     bad = total = equations = open_ = failed = 0
     for path in paths:

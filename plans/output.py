@@ -69,11 +69,7 @@ def write_files(files: Mapping[str, str], out_dir: str | Path) -> list[Path]:
     except BaseException as exc:       # a full disk, no permission … or Ctrl-C: leave nothing behind
         for tmp in temps:
             _remove(tmp)
-        for folder in reversed(made):
-            try:
-                folder.rmdir()
-            except OSError:
-                pass
+        _remove_folders(made)
         if isinstance(exc, OSError):
             raise OutputError(_why(exc), file=str(current), key=OPTION) from None
         raise
@@ -95,13 +91,18 @@ def _make_folder(out: Path) -> list[Path]:
             os.mkdir(folder)
             made.append(folder)
     except OSError as exc:
-        for folder in reversed(made):
-            try:
-                folder.rmdir()
-            except OSError:
-                pass
+        _remove_folders(made)
         raise OutputError(_why(exc), file=str(out), key=OPTION) from None
     return made
+
+
+def _remove_folders(made: list[Path]) -> None:
+    """Remove the folders this call made (outermost first in ``made``), innermost first."""
+    for folder in reversed(made):
+        try:
+            folder.rmdir()
+        except OSError:
+            pass
 
 
 def _temporary(out: Path, name: str, data: bytes) -> Path:

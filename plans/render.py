@@ -22,11 +22,10 @@ from .errors import ConstructionError, PlansError
 from .kinematics import WARN_SIN, Motion, analyse, special
 from .kinematics.centres import Centres, centres
 from .model import build_mechanism
-from .output import write_files
 from .scene import Scene, read_scene
 from .structure import ComplexGroup, analyse_structure
 
-__all__ = ["Rendered", "render_scene", "report", "write_files", "solve_scene"]
+__all__ = ["Rendered", "render_scene", "report", "solve_scene"]
 
 
 @dataclass(frozen=True)

@@ -48,7 +48,9 @@ MAX_ANGLE_DEG = 1e6
 #: pose. A class III group costs ~4 ms a step, so 7200 steps (20 turns: every position a crank
 #: can take, many times over) take about 30 s; a class II mechanism, well under a second.
 MAX_WALK_STEPS = 7200
-#: Steps per sketch size of a linear drive's walk (kinematics/solve.py ``_grid``: size/200).
+#: The continuation walk's steps (kinematics/solve.py ``_grid``), here so that the bound above
+#: and the solver read the same numbers: a crank steps STEP_DEG, a slider size/LINEAR_STEPS_PER_SIZE.
+STEP_DEG = 1.0
 LINEAR_STEPS_PER_SIZE = 200.0
 #: Most drive positions in one scene: one a degree over a turn; each writes up to five sheets.
 MAX_POSITIONS = 360
@@ -506,8 +508,6 @@ def _walk(kind: str, values: tuple[float, ...], points: Mapping[str, tuple[float
     """Refuse drive values whose continuation walk from the sketch would take more than
     MAX_WALK_STEPS steps (kinematics/solve.py ``_grid``: a crank's walk starts within half a turn
     of the values' median and steps 1°; a slider's starts at 0 and steps size/200)."""
-    from .kinematics.solve import STEP_DEG     # here: the kinematics package imports this module
-
     lo, hi = min(values), max(values)
     if kind == "rotary":
         step, unit = STEP_DEG, "°"

@@ -18,6 +18,7 @@ A point name followed by a link name (``A3``) is the point of that link now at X
 from __future__ import annotations
 
 from dataclasses import dataclass
+from itertools import count
 
 import numpy as np
 
@@ -375,7 +376,7 @@ def _special(b: _Builder, g: ComplexGroup, sym: str) -> None:
     used = [p for k, p in enumerate(pts) if k != skip]
     name = {}
     for p in used:   # S1, S2, S3 — primed if the scene has points of those names
-        name[p.name] = p.name + PRIME * next(k for k in range(4) if p.name + PRIME * k not in mech.sketch)
+        name[p.name] = p.name + PRIME * next(k for k in count() if p.name + PRIME * k not in mech.sketch)
         b.extra[name[p.name]] = p.position[0]
     for p in used:
         s_img = b.image(name[p.name], g.base)

@@ -17,7 +17,7 @@ import numpy as np
 from ..errors import AssemblyError, SingularPositionError
 from ..model import Mechanism
 from ..structure import Structure
-from ..scene import FRAME
+from ..scene import FRAME, LINEAR_STEPS_PER_SIZE, STEP_DEG   # the walk's steps, bounded by the scene
 from ..structure import ComplexGroup
 from . import special
 from .generic import GroupEquations
@@ -32,8 +32,6 @@ __all__ = ["analyse", "drive_states", "singular_reason", "group_condition", "SIN
 SINGULAR_SIN = 1e-6
 #: |sin| below which the position is reported as near-singular (a warning, values are kept).
 WARN_SIN = 1e-2
-#: Largest continuation step of a crank (degrees).
-STEP_DEG = 1.0
 #: A class III/IV step whose points move more than JUMP_RATIO times the previous step
 #: (and more than 1 % of the mechanism's size) is a jump to another assembly branch.
 JUMP_RATIO = 8.0
@@ -135,7 +133,7 @@ def _grid(mech: Mechanism, values: np.ndarray, start: float | None = None
         step = STEP_DEG
     else:
         start = mech.drive.sketch_value
-        step = mech.size / 200.0
+        step = mech.size / LINEAR_STEPS_PER_SIZE
     up = np.unique(np.concatenate([np.arange(start, values.max(), step), values[values >= start]]))
     down = np.unique(np.concatenate([np.arange(start, values.min(), -step), values[values <= start]]))[::-1]
     up = up[up > start]
