@@ -147,11 +147,13 @@ def _shape(name: str, pts: tuple[str, ...], sketch: Mapping[str, np.ndarray],
            lengths: Mapping[frozenset[str], float]) -> dict[str, np.ndarray]:
     """Local coordinates of a link's points (m).
 
-    With no ``[lengths]`` on the link the sketch itself is the shape, to the bit. Otherwise
-    every point is trilaterated from the first two with the given lengths (else the sketch
-    distances), keeping the sketch's side; the height above the line p0p1 comes from the
-    triangle's area by Kahan's cancellation-free Heron formula, so a point on the line (a
-    rod's midpoint) stays on it exactly instead of sqrt(rounding residue) ~ 1e-8 off it."""
+    With no ``[lengths]`` on the link the sketch itself is the shape, to the bit. Otherwise p1
+    is put at the length p0p1 along the sketched direction, and each further point keeps its
+    sketched offset from p0 (no length of it given), lies at its given length in its sketched
+    direction (one given), or is trilaterated from p0 and p1 on the sketch's side (both given):
+    its height above p0p1 comes from the triangle's area by Kahan's cancellation-free Heron
+    formula, so a point on the line (a rod's midpoint) stays on it instead of sqrt(rounding
+    residue) ~ 1e-8 off it."""
     key = f"links.{name}"
     if len(pts) >= 2 and sketch[pts[0]].tolist() == sketch[pts[1]].tolist():
         raise SceneError(f"points {pts[0]} and {pts[1]} coincide in the sketch; a link's points must be distinct",
@@ -173,13 +175,12 @@ def _shape(name: str, pts: tuple[str, ...], sketch: Mapping[str, np.ndarray],
         rel = sketch[pk] - sketch[p0]
         given0, given1 = frozenset((p0, pk)) in lengths, frozenset((p1, pk)) in lengths
         if not (given0 or given1):        # nothing given: where the sketch puts it, from p0
-            local[pk] = local[p0] + float(rel @ ex) * ex + float(rel @ ey) * ey
+            local[pk] = local[p0] + rel       # (the local frame is the sketch's)
             continue
         if given0 != given1:              # one distance given: at that distance, as sketched
             near = p0 if given0 else p1
             arm = sketch[pk] - sketch[near]
-            arm_local = float(arm @ ex) * ex + float(arm @ ey) * ey
-            local[pk] = local[near] + dist(near, pk) * arm_local / np.linalg.norm(arm_local)
+            local[pk] = local[near] + dist(near, pk) * arm / np.linalg.norm(arm)
             continue
         d0, d1 = dist(p0, pk), dist(p1, pk)
         h = _height(d01, d0, d1)
