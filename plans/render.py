@@ -17,7 +17,7 @@ from .constructions import Scales, acceleration_plan, choose_scales, scheme, unc
 from .constructions.plans import Plan, PlanPoint
 from .constructions.scales import extent_of
 from .constructions.centres import centres_sheet
-from .drawing import Style, draw_centres, draw_plan, draw_scheme
+from .drawing import Heading, Style, draw_centres, draw_plan, draw_scheme
 from .errors import ConstructionError, PlansError
 from .kinematics import WARN_SIN, Motion, analyse, special
 from .kinematics.centres import Centres, centres
@@ -88,15 +88,14 @@ def at_rest(motion: Motion) -> tuple[bool, bool]:
     return still_v, still_a
 
 
-def _empty_sheet(kind: str, *, title: str, subtitle: str, why: str, ident: str, style: Style) -> str:
+def _empty_sheet(kind: str, heading: Heading, *, why: str, ident: str, style: Style) -> str:
     """A plan sheet with the pole alone: the plan of a mechanism at rest (every image at the
     pole), or a construction that cannot be drawn at this position; ``why`` is written below
     it, wrapped to the sheet. Any scale draws it the same; μ = 1 is written."""
     pole = "p" if kind == "velocity" else "π"
     plan = Plan(kind=kind, mu=1.0, pole=pole, points=(PlanPoint(pole, (0.0, 0.0)),), vectors=(), lines=(),
                 similar=())
-    return draw_plan(plan, title=title, subtitle=subtitle, ident=ident, style=style,
-                     notes=tuple(textwrap.wrap(why, NOTE_CHARS)))
+    return draw_plan(plan, heading, ident=ident, style=style, notes=tuple(textwrap.wrap(why, NOTE_CHARS)))
 
 
 #: Characters per line of a note under an empty plan (small text on the narrowest sheet).
@@ -283,12 +282,12 @@ def render_scene(path: str | Path, style: Style = Style()) -> Rendered:
                                 f"(condition {s[i]:.2e}{where}); values are exact but sensitive")
         if "scheme" in scene.draw:
             sch = scheme(motion, i, scales.mu_l)
-            files[f"{stem}-scheme{sfx}.svg"] = draw_scheme(sch, title=scene.title, subtitle=f"Scheme, {label}",
+            files[f"{stem}-scheme{sfx}.svg"] = draw_scheme(sch, Heading(scene.title, "Kinematic scheme", label),
                                                            formula=formula, ident=f"scheme{sfx or ''}", style=style)
         if "centres" in scene.draw:
             sheet = centres_sheet(motion, ic, i)
             files[f"{stem}-centres{sfx}.svg"] = draw_centres(
-                sheet, title=f"{scene.title}: instantaneous centres", subtitle=label, formula=formula,
+                sheet, Heading(scene.title, "Instantaneous centres of velocity", label), formula=formula,
                 ident=f"centres{sfx or ''}", style=style)
         if "velocity" in scene.draw:
             for g in solutions:
@@ -303,19 +302,17 @@ def render_scene(path: str | Path, style: Style = Style()) -> Rendered:
                                          ("acceleration", acceleration_plan, scales.mu_a, rest[1])):
             if kind not in scene.draw:
                 continue
-            title = f"{scene.title}: {kind} plan"
+            heading = Heading(scene.title, f"{kind.capitalize()} plan", label)
             if still:
-                files[f"{stem}-{kind}{sfx}.svg"] = _empty_sheet(kind, title=title, ident=f"{kind}{sfx or ''}",
-                                                                subtitle=label, why=_rest_note(motion, kind),
-                                                                style=style)
+                files[f"{stem}-{kind}{sfx}.svg"] = _empty_sheet(kind, heading, ident=f"{kind}{sfx or ''}",
+                                                                why=_rest_note(motion, kind), style=style)
                 continue
             plan = builder(motion, i, mu)
             failures = check_plan(plan) + _similarity(motion, plan, i)
             if failures:
                 raise PlansError(f"{path}: {kind} plan at {motion.values[i]:g} failed its geometric check: "
                                  f"{failures[0]} (please report this scene)")
-            files[f"{stem}-{kind}{sfx}.svg"] = draw_plan(plan, title=title, subtitle=label, ident=f"{kind}{sfx or ''}",
-                                                         style=style)
+            files[f"{stem}-{kind}{sfx}.svg"] = draw_plan(plan, heading, ident=f"{kind}{sfx or ''}", style=style)
     files[f"{stem}.json"] = json.dumps(report(scene, motion, scales, solutions, ic), indent=1, ensure_ascii=False) + "\n"
     return Rendered(stem, files, motion, scales, tuple(warnings))
 
@@ -326,7 +323,7 @@ def _koshel(motion: Motion, i: int, g: ComplexGroup, still: bool, *, title: str,
     is drawn); None when the construction does not apply to the group. A construction that
     degenerates here, or fails its check, gives a sheet that states why (the other sheets are
     unaffected); a mechanism at rest, a sheet saying so."""
-    title = f"{title}: velocity plan in an uncertain scale (Koshel)"
+    heading = Heading(title, "Velocity plan in an uncertain scale (Koshel)", label)
     try:
         plan = uncertain_plan(motion, i, g)
     except ConstructionError as exc:
@@ -338,16 +335,14 @@ def _koshel(motion: Motion, i: int, g: ComplexGroup, still: bool, *, title: str,
         why = f"the construction failed its geometric check: {failures[0]} (please report this scene)" \
             if failures else ""
     if still:       # the mechanism at rest: said once for the whole scene
-        return _empty_sheet("velocity", title=title, subtitle=label, why=_rest_note(motion, "velocity"),
-                            ident=ident, style=style), ""
+        return _empty_sheet("velocity", heading, why=_rest_note(motion, "velocity"), ident=ident, style=style), ""
     if why:
-        return _empty_sheet("velocity", title=title, subtitle=f"{label}; not drawn at this position",
-                            why=why, ident=ident, style=style), why
+        return _empty_sheet("velocity", heading, why=f"not drawn at this position: {why}", ident=ident,
+                            style=style), why
     first = next(v for v in plan.vectors if v.kind == "absolute")
-    return draw_plan(plan, title=title,
-                     subtitle=f"{label}; p{first.quantity[2:].lower()} = {first.length:g} mm ⊥ P{g.base}"
-                              f"{first.quantity[2:]} (arbitrary), then the scale from the crank pin's speed",
-                     ident=ident, style=style), ""
+    note = (f"p{first.quantity[2:].lower()} = {first.length:g} mm ⊥ P{g.base}{first.quantity[2:]} (arbitrary), "
+            "then the scale from the crank pin's speed")
+    return draw_plan(plan, heading, ident=ident, style=style, notes=(note,)), ""
 
 
 #: Largest relative difference allowed between the two solutions of a class III group.

@@ -17,7 +17,7 @@ import pytest
 from plans.checking import WRITER_PRECISION, check_svg, inspect_svg
 from plans.cli import main
 from plans.constructions.plans import Plan, PlanPoint
-from plans.drawing import draw_plan
+from plans.drawing import Heading, draw_plan
 from plans.errors import DrawingError
 
 #: Sheets the doctoring tests edit: a four-bar (relative vectors, n/t components), the
@@ -154,7 +154,7 @@ def test_scheme_sheet_passes_and_says_so(rendered, capsys):
 def test_plan_drawn_as_the_pole_alone_passes(tmp_path, capsys):
     plan = Plan(kind="velocity", mu=1.0, pole="p", points=(PlanPoint("p", (0.0, 0.0)),), vectors=(), lines=(),
                 similar=())
-    text = draw_plan(plan, title="At rest", subtitle="every image at the pole", ident="velocity")
+    text = draw_plan(plan, Heading("At rest", "Velocity plan", "every image at the pole"), ident="velocity")
     code, out = run_check(tmp_path, text, capsys)
     assert code == 0 and "nothing to measure" in out
     # the same sheet claiming one vector it does not hold fails
