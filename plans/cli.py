@@ -12,6 +12,7 @@ from typing import Sequence
 import numpy as np
 
 from .errors import OutputError, PlansError, one_line
+from .export import DEFAULT_DPI, FORMATS, MAX_DPI, MIN_DPI, convert, parse_dpi, parse_formats, require_cairo
 from .output import check_folder, write_files
 from .render import Rendered, render_scene
 
@@ -45,23 +46,30 @@ def _table(r: Rendered) -> str:
     return "\n".join(lines)
 
 
-def _render(paths: Sequence[str], out: str, quiet: bool) -> int:
-    """Render every scene, then write all their files at once: any error writes nothing."""
+def _render(paths: Sequence[str], out: str, quiet: bool, formats: Sequence[str] = ("svg",),
+            dpi: float = DEFAULT_DPI) -> int:
+    """Render every scene, convert its sheets to ``formats`` (PNG at ``dpi`` dots per inch),
+    then write all their files at once: any error writes nothing."""
     _distinct_stems(paths)
     check_folder(out)
+    if set(formats) - {"svg"}:
+        require_cairo()          # a missing cairo is told before anything is computed
     rendered = [render_scene(p) for p in paths]
-    files: dict[str, str] = {}
+    files: dict[str, str | bytes] = {}
+    counts = []
     for path, r in zip(paths, rendered):
-        clash = next((name for name in r.files if name in files), None)
+        converted = convert(r.files, formats, dpi)
+        clash = next((name for name in converted if name in files), None)
         if clash:
             raise OutputError(f"would write {clash}, which another scene writes too; rename one scene",
                               file=path, key="SCENE.toml")
-        files.update(r.files)
+        files.update(converted)
+        counts.append(len(converted))
     write_files(files, out)
-    for r in rendered:
+    for r, count in zip(rendered, counts):
         if not quiet:
             print(_table(r))
-            print(f"  wrote {len(r.files)} files to {out}/")
+            print(f"  wrote {count} files to {out}/")
         for w in r.warnings:
             print(f"warning: {w}", file=sys.stderr)
     return 0
@@ -124,6 +132,17 @@ def _examples() -> list[Path]:
     return sorted(Path(str(p)) for p in root.iterdir() if p.name.endswith(".toml"))
 
 
+def _format_options(parser: argparse.ArgumentParser) -> None:
+    """``--format`` and ``--dpi`` of render and demo (read as text: plans checks them, so a bad
+    value is one line like every other error)."""
+    parser.add_argument("--format", default="svg", metavar="LIST",
+                        help=f"comma-separated output formats among {','.join(FORMATS)} (default svg); PNG and "
+                        "PDF keep the sheet's size in mm and need cairosvg and the cairo library")
+    parser.add_argument("--dpi", default=f"{DEFAULT_DPI:g}", metavar="N",
+                        help=f"PNG resolution in dots per inch, {MIN_DPI:g} to {MAX_DPI:g} (default {DEFAULT_DPI:g}): "
+                        "a side of the PNG is round(mm / 25.4 × N) pixels")
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="plans", description="Velocity and acceleration plans of planar "
                                      "linkages, drawn to scale from an exact vector core.")
@@ -132,20 +151,23 @@ def main(argv: Sequence[str] | None = None) -> int:
     p.add_argument("scenes", nargs="+", metavar="SCENE.toml")
     p.add_argument("-o", "--output", default="output", metavar="DIR")
     p.add_argument("-q", "--quiet", action="store_true")
+    _format_options(p)
     c = sub.add_parser("check", help="measure every vector of plan SVGs against its exact value")
     c.add_argument("svgs", nargs="+", metavar="FILE.svg")
     d = sub.add_parser("demo", help="render the bundled textbook examples")
     d.add_argument("-o", "--output", default="output", metavar="DIR")
     d.add_argument("-q", "--quiet", action="store_true")
+    _format_options(d)
     b = sub.add_parser("bench", help="measure what accuracy costs in time: tables, charts and bench.json")
     b.add_argument("-o", "--output", default="output/bench", metavar="DIR")
     b.add_argument("--quick", action="store_true", help="a few small cases only (seconds; for tests)")
     args = parser.parse_args(argv)
     try:
-        if args.command == "render":
-            return _render(args.scenes, args.output, args.quiet)
-        if args.command == "demo":
-            return _render([str(p) for p in _examples()], args.output, args.quiet)
+        if args.command in ("render", "demo"):
+            formats = parse_formats(args.format)      # both refused before anything is computed
+            dpi = parse_dpi(args.dpi)
+            scenes = args.scenes if args.command == "render" else [str(p) for p in _examples()]
+            return _render(scenes, args.output, args.quiet, formats, dpi)
         if args.command == "bench":
             from .bench import run   # imported here: the other commands need none of it
 

@@ -47,8 +47,9 @@ def _writable(folder: Path) -> bool:
     return os.access(folder, os.W_OK | os.X_OK)
 
 
-def write_files(files: Mapping[str, str], out_dir: str | Path) -> list[Path]:
-    """Write ``files`` (name → UTF-8 text) into ``out_dir`` (made if needed), all or nothing."""
+def write_files(files: Mapping[str, str | bytes], out_dir: str | Path) -> list[Path]:
+    """Write ``files`` (name → text, written as UTF-8, or bytes, written as they are: a PNG,
+    a PDF) into ``out_dir`` (made if needed), all or nothing."""
     out = Path(out_dir)
     check_folder(out)
     targets = [out / name for name in files]
@@ -60,9 +61,10 @@ def write_files(files: Mapping[str, str], out_dir: str | Path) -> list[Path]:
     temps: list[Path] = []
     current = out
     try:
-        for target, text in zip(targets, files.values()):
+        for target, content in zip(targets, files.values()):
             current = target
-            temps.append(_temporary(out, target.name, text.encode("utf-8")))
+            data = content if isinstance(content, bytes) else content.encode("utf-8")
+            temps.append(_temporary(out, target.name, data))
         for tmp, target in zip(temps, targets):   # targets checked above: a rename fails only on a broken disk
             current = target
             os.replace(tmp, target)

@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import json
 import math
-import textwrap
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -17,6 +16,8 @@ from .constructions import Scales, acceleration_plan, choose_scales, scheme, unc
 from .constructions.plans import Plan, PlanPoint
 from .constructions.scales import extent_of
 from .constructions.centres import centres_sheet
+from .constructions.koshel import KOSHEL_MAX_MM, fit_segment
+from .constructions.plans import UNCERTAIN_MM
 from .drawing import Heading, Style, draw_centres, draw_plan, draw_scheme
 from .errors import ConstructionError, PlansError
 from .kinematics import WARN_SIN, Motion, analyse, special
@@ -95,11 +96,9 @@ def _empty_sheet(kind: str, heading: Heading, *, why: str, ident: str, style: St
     pole = "p" if kind == "velocity" else "π"
     plan = Plan(kind=kind, mu=1.0, pole=pole, points=(PlanPoint(pole, (0.0, 0.0)),), vectors=(), lines=(),
                 similar=())
-    return draw_plan(plan, heading, ident=ident, style=style, notes=tuple(textwrap.wrap(why, NOTE_CHARS)))
+    return draw_plan(plan, heading, ident=ident, style=style, notes=(why,))
 
 
-#: Characters per line of a note under an empty plan (small text on the narrowest sheet).
-NOTE_CHARS = 90
 
 
 def _rest_note(motion: Motion, kind: str) -> str:
@@ -129,7 +128,7 @@ def _suffix(motion: Motion, i: int) -> str:
 def _position_label(motion: Motion, i: int) -> str:
     v = motion.values[i]
     d = motion.mechanism.drive
-    return f"φ1 = {v:g}°, ω1 = {d.speed:g} rad/s, ε1 = {d.rate:g} rad/s²" if d.kind == "rotary" else \
+    return f"φ_1 = {v:g}°, ω_1 = {d.speed:g} rad/s, ε_1 = {d.rate:g} rad/s²" if d.kind == "rotary" else \
         f"s = {v:g} m, v = {d.speed:g} m/s, a = {d.rate:g} m/s²"
 
 
@@ -312,7 +311,9 @@ def render_scene(path: str | Path, style: Style = Style()) -> Rendered:
             if failures:
                 raise PlansError(f"{path}: {kind} plan at {motion.values[i]:g} failed its geometric check: "
                                  f"{failures[0]} (please report this scene)")
-            files[f"{stem}-{kind}{sfx}.svg"] = draw_plan(plan, heading, ident=f"{kind}{sfx or ''}", style=style)
+            sym = "μ_V" if kind == "velocity" else "μ_a"
+            files[f"{stem}-{kind}{sfx}.svg"] = draw_plan(plan, heading, ident=f"{kind}{sfx or ''}", style=style,
+                                                         notes=tuple(n for n in scales.notes if n.startswith(sym)))
     files[f"{stem}.json"] = json.dumps(report(scene, motion, scales, solutions, ic), indent=1, ensure_ascii=False) + "\n"
     return Rendered(stem, files, motion, scales, tuple(warnings))
 
@@ -331,6 +332,7 @@ def _koshel(motion: Motion, i: int, g: ComplexGroup, still: bool, *, title: str,
     else:
         if plan is None:
             return None
+        plan, segment = fit_segment(plan)
         failures = [] if still else check_plan(plan) + _similarity(motion, plan, i)
         why = f"the construction failed its geometric check: {failures[0]} (please report this scene)" \
             if failures else ""
@@ -340,7 +342,8 @@ def _koshel(motion: Motion, i: int, g: ComplexGroup, still: bool, *, title: str,
         return _empty_sheet("velocity", heading, why=f"not drawn at this position: {why}", ident=ident,
                             style=style), why
     first = next(v for v in plan.vectors if v.kind == "absolute")
-    note = (f"p{first.quantity[2:].lower()} = {first.length:g} mm ⊥ P{g.base}{first.quantity[2:]} (arbitrary), "
+    note = (f"p{first.quantity[2:].lower()} = {segment:g} mm ⊥ P_{{{g.base}}}{first.quantity[2:]}, arbitrary: the longest "
+            f"of the series ≤ {UNCERTAIN_MM:g} mm that keeps the plan within {KOSHEL_MAX_MM:g} mm; "
             "then the scale from the crank pin's speed")
     return draw_plan(plan, heading, ident=ident, style=style, notes=(note,)), ""
 

@@ -68,8 +68,9 @@ MAX_ACCELERATION = 1e12
 #: plans' vector lengths would read 0; 0 itself is allowed (the mechanism at rest). The same bound
 #: holds for ε (or the drive's acceleration) of a drive at rest, then the only source of motion.
 MIN_RATE = 1e-9
-#: Longest title, characters: it is one line at the top of every sheet (200 characters of 5 mm
-#: text are already 550 mm wide, wider than an A2 sheet).
+#: Longest title, characters: it is one line of every sheet's title block, shrunk to fit down to
+#: 2 mm text and cut short with "…" beyond that (about 130 characters); the whole title stays
+#: in the SVG's <title> and in the JSON report.
 MAX_TITLE_CHARS = 200
 
 #: Values shown in error messages are abbreviated (a nested or huge value stays one short line).

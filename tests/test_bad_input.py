@@ -199,11 +199,11 @@ def test_huge_coordinate_or_length(tmp_path, capsys, old, new, key):
 # --- 5. scales -------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("scale, key, needle", [
-    ("mu_l = 1e-300", "scales.mu_l", "10 m of paper"),
+    ("mu_l = 1e-300", "scales.mu_l", "fit an A3 sheet"),
     ("mu_l = 1e6", "scales.mu_l", "less than 1 mm"),
     ("mu_v = 1e300", "scales.mu_v", "less than 1 mm"),
-    ("mu_v = 1e-9", "scales.mu_v", "10 m of paper"),
-    ("mu_a = 1e-300", "scales.mu_a", "10 m of paper"),
+    ("mu_v = 1e-9", "scales.mu_v", "fit an A3 sheet"),
+    ("mu_a = 1e-300", "scales.mu_a", "fit an A3 sheet"),
 ])
 def test_scale_that_draws_off_the_paper_or_too_small(tmp_path, capsys, scale, key, needle):
     line = refused(tmp_path, capsys, GOOD + f"\n[scales]\n{scale}\n", key, needle, "the automatic choice")

@@ -16,16 +16,19 @@ __all__ = ["SERIES", "Scales", "standard_scale", "choose_scales", "REFERENCE_MM"
 SERIES = (1.0, 1.25, 2.0, 2.5, 4.0, 5.0, 8.0)
 #: Wanted length of the reference vector (pa, πa) on a plan, mm.
 REFERENCE_MM = (80.0, 120.0)
-#: Largest extent of a plan before the scale is coarsened, mm.
+#: Largest extent of a plan before the scale is coarsened, mm: a plan this wide and high fits
+#: the drawing area of an A3 sheet (portrait 272 × 375 mm, less room for labels), the largest
+#: sheet plans draws on.
 PLAN_MAX_MM = 240.0
 #: Area the scheme must fit in, mm.
 SCHEME_MM = (200.0, 140.0)
-#: Largest drawing a scale given in [scales] may make, mm: 10 m, longer than any plotter roll
-#: (an A0 sheet is 1.19 m); beyond it a sheet cannot be printed and coordinates lose their decimals.
-MAX_DRAWING_MM = 10_000.0
+#: Largest drawing a scale given in [scales] may make, mm: as for the automatic plan scales, a
+#: drawing this wide and high fits the drawing area of an A3 sheet, the largest plans draws on.
+MAX_DRAWING_MM = PLAN_MAX_MM
 #: Smallest drawing a scale given in [scales] may make, mm: a scheme or plan under 1 mm (three
 #: pen widths) cannot be read or measured.
 MIN_DRAWING_MM = 1.0
+_SYMBOLS = {"mu_v": "μ_V", "mu_a": "μ_a"}
 _NAMES = {"mu_l": ("the scheme", "m/mm"), "mu_v": ("the velocity plan", "(m/s)/mm"),
           "mu_a": ("the acceleration plan", "(m/s²)/mm")}
 
@@ -37,6 +40,7 @@ class Scales:
     mu_l: float
     mu_v: float | None = None
     mu_a: float | None = None
+    notes: tuple[str, ...] = ()   # which rule gave way to which, when they conflicted
 
     def as_dict(self) -> dict[str, float]:
         return {k: v for k, v in (("mu_l", self.mu_l), ("mu_v", self.mu_v), ("mu_a", self.mu_a)) if v is not None}
@@ -78,10 +82,15 @@ def choose_scales(*, extent: tuple[float, float], v_ref: float | None = None, v_
     overrides = overrides or {}
     auto = {"mu_l": max(fitting_scale(extent[0], SCHEME_MM[0]), fitting_scale(extent[1], SCHEME_MM[1]))}
     size = {"mu_l": max(extent)}
-    if v_ref is not None:
-        auto["mu_v"], size["mu_v"] = standard_scale(v_ref, limit=PLAN_MAX_MM, extent=v_extent), v_extent
-    if a_ref is not None:
-        auto["mu_a"], size["mu_a"] = standard_scale(a_ref, limit=PLAN_MAX_MM, extent=a_extent), a_extent
+    notes = []
+    for key, ref, ext in (("mu_v", v_ref, v_extent), ("mu_a", a_ref, a_extent)):
+        if ref is None:
+            continue
+        auto[key], size[key] = standard_scale(ref, limit=PLAN_MAX_MM, extent=ext), ext
+        if ref > 0 and ref / auto[key] < REFERENCE_MM[0] and standard_scale(ref) != auto[key]:
+            notes.append(f"{_SYMBOLS[key]} = {auto[key]:g}: the reference vector is {ref / auto[key]:.0f} mm, under "
+                         f"the {REFERENCE_MM[0]:g}–{REFERENCE_MM[1]:g} mm rule, which gave way so that the whole plan "
+                         f"({ext / auto[key]:.0f} mm across) fits an A3 sheet")
     mu = dict(auto)
     for key, value in overrides.items():
         if key not in auto:
@@ -89,12 +98,13 @@ def choose_scales(*, extent: tuple[float, float], v_ref: float | None = None, v_
         drawn = size[key] / value
         if not MIN_DRAWING_MM <= drawn <= MAX_DRAWING_MM:
             what, unit = _NAMES[key]
-            bound = (f"more than {MAX_DRAWING_MM / 1000:g} m of paper" if drawn > MAX_DRAWING_MM
+            bound = (f"more than the {MAX_DRAWING_MM:g} mm that fit an A3 sheet" if drawn > MAX_DRAWING_MM
                      else f"less than {MIN_DRAWING_MM:g} mm, too small to see")
             raise SceneError(f"{key} = {value:g} {unit} would draw {what} {drawn:.3g} mm across, {bound}; use "
                              f"e.g. {key} = {auto[key]:g} (the automatic choice) or leave it out", key=f"scales.{key}")
         mu[key] = value
-    return Scales(mu_l=mu["mu_l"], mu_v=mu.get("mu_v"), mu_a=mu.get("mu_a"))
+    notes = [n for n in notes if n.split(" ")[0] not in {_SYMBOLS[k] for k in overrides}]
+    return Scales(mu_l=mu["mu_l"], mu_v=mu.get("mu_v"), mu_a=mu.get("mu_a"), notes=tuple(notes))
 
 
 def extent_of(points: np.ndarray) -> tuple[float, float]:

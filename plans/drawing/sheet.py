@@ -16,7 +16,7 @@ import svgwrite
 
 from .canvas import Canvas, fmt
 from .style import Style
-from .text import Box, runs, width
+from .text import Box, plain, runs, width
 
 __all__ = ["Format", "FORMATS", "choose_format", "TitleBlock", "new_sheet", "FRAME_MM", "TITLE_BLOCK_MM",
            "LARGEST"]
@@ -85,6 +85,7 @@ def new_sheet(fmt_: Format, content: tuple[float, float, float, float], *, ident
     dwg.attribs["data-precision"] = fmt(style.precision, 10)
     dwg.attribs["data-format"] = fmt_.name
     dwg.add(dwg.rect(insert=(0, 0), size=(w, h), fill="#fff", id=f"{ident}-paper"))
+    dwg.set_desc(title=plain(f"{block.mechanism}: {block.sheet}, {block.position}"))
     area = fmt_.area
     x0, y0, x1, y1 = content
     dx = (area.x0 + area.x1) / 2 - (x0 + x1) / 2
@@ -101,10 +102,17 @@ def new_sheet(fmt_: Format, content: tuple[float, float, float, float], *, ident
     return dwg, canvas
 
 
-def _fit(text: str, room: float, size: float, smallest: float, italic: bool = False) -> float:
-    """The largest text height ≤ ``size`` (down to ``smallest``) at which ``text`` fits ``room`` mm."""
-    w = width(runs(text), size, italic)
-    return size if w <= room else max(smallest, size * room / w)
+def _fit(text: str, room: float, size: float, smallest: float) -> tuple[str, float]:
+    """``text`` at the largest height ≤ ``size`` (down to ``smallest``) at which it fits
+    ``room`` mm; cut short with "…" when it does not fit even at ``smallest``."""
+    w = width(runs(text), size, False)
+    if w <= room:
+        return text, size
+    if w * smallest / size <= room:
+        return text, size * room / w
+    while text and width(runs(text + "…"), smallest, False) > room:
+        text = text[:-1]
+    return text.rstrip() + "…", smallest
 
 
 def _title_block(dwg: svgwrite.Drawing, canvas: Canvas, frame, fmt_: Format, block: TitleBlock, style: Style) -> None:
@@ -125,7 +133,7 @@ def _title_block(dwg: svgwrite.Drawing, canvas: Canvas, frame, fmt_: Format, blo
         base = y + row_h / 2 + 1.2
         canvas.text(texts, (x0 + 2.0, base), caption, size=style.small_text)
         this_room = room - (_FORMAT_MM if k == 1 else 0.0)
-        size = _fit(value, this_room, style.title_text if k == 0 else style.text, 2.0)
+        value, size = _fit(value, this_room, style.title_text if k == 0 else style.text, 2.0)
         canvas.text(texts, (x0 + _CAPTION_MM + 1.5, y + row_h / 2 + 0.35 * size), value, size=size)
         y += row_h
     g.add(dwg.line(start=(fmt(x0 + _CAPTION_MM, 3), fmt(y_bottom - bh, 3)), end=(fmt(x0 + _CAPTION_MM, 3),
@@ -142,8 +150,19 @@ def _title_block(dwg: svgwrite.Drawing, canvas: Canvas, frame, fmt_: Format, blo
 
 def note_lines(canvas: Canvas, parent, lines: Sequence[str], style: Style) -> None:
     """Lines of small text at the bottom left of the drawing area (why a plan is empty, which
-    rule gave way)."""
+    rule gave way), each wrapped at word boundaries to the area's width."""
     a = canvas.area
-    y = a.y1 - 2.0 - 4.0 * (len(lines) - 1)
-    for k, line in enumerate(lines):
-        canvas.text(parent, (a.x0 + 3.0, y + 4.0 * k), line, size=style.small_text)
+    room = a.x1 - a.x0 - 6.0
+    rows: list[str] = []
+    for line in lines:
+        row = ""
+        for word in line.split(" "):
+            trial = f"{row} {word}" if row else word
+            if row and width(runs(trial), style.small_text, False) > room:
+                rows.append(row)
+                trial = word
+            row = trial
+        rows.append(row)
+    y = a.y1 - 2.0 - 4.0 * (len(rows) - 1)
+    for k, row in enumerate(rows):
+        canvas.text(parent, (a.x0 + 3.0, y + 4.0 * k), row, size=style.small_text)

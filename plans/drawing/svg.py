@@ -167,7 +167,7 @@ def draw_plan(plan: Plan, heading: Heading, *, ident: str, style: Style = Style(
     dwg.add(g)
     if notes:
         note_lines(canvas, dwg.add(dwg.g(id=f"{ident}-notes")), notes, style)
-    canvas.place_labels(labels)
+    canvas.place_labels(dwg.add(dwg.g(id=f"{ident}-leaders")))   # outside the plan: not vectors
     return dwg.tostring()
 
 

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 from .font_metrics import BOOK, ITALIC
 
-__all__ = ["Run", "runs", "width", "Box", "box", "ASCENT", "DESCENT", "SUB_SIZE", "SUB_SHIFT", "FONT"]
+__all__ = ["Run", "runs", "plain", "width", "Box", "box", "ASCENT", "DESCENT", "SUB_SIZE", "SUB_SHIFT", "FONT"]
 
 #: The family every sheet names (the metrics below are its own).
 FONT = "DejaVu Serif"
@@ -57,6 +57,11 @@ def runs(label: str, *, digits: bool = False) -> tuple[Run, ...]:
         if m:
             out = [Run(m.group(1)), Run(m.group(2), True)] + ([Run(m.group(3))] if m.group(3) else [])
     return tuple(r for r in out if r.text)
+
+
+def plain(label: str) -> str:
+    """A label's characters without markup (``φ_1`` → ``φ1``)."""
+    return "".join(r.text for r in runs(label))
 
 
 def _em(text: str, italic: bool) -> float:
