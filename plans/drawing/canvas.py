@@ -34,6 +34,8 @@ LEADER_GAPS = (9.0, 12.0, 16.0, 22.0, 30.0, 40.0)
 CLEARANCE = 0.25
 #: Directions tried around an anchor.
 DIRECTIONS = 16
+#: The gaps tried in turn (nearest first; the last stage with leaders).
+_STAGES = ((GAPS[:2], False), (GAPS[2:], False), (LEADER_GAPS, True))
 
 
 def fmt(x: float, decimals: int) -> str:
@@ -186,54 +188,63 @@ class Canvas:
         tree = shapely.STRtree(self.ink) if self.ink else None
         angles = np.arange(DIRECTIONS) * (2 * math.pi / DIRECTIONS)
         for req in self._requests:
-            w = box(req.parts, req.size, req.italic, 0.0, 0.0).x1
             b0 = box(req.parts, req.size, req.italic, 0.0, 0.0)
-            h_up, h_down = -b0.y0, b0.y1
+            w, h_up, h_down = b0.x1, -b0.y0, b0.y1
             order = np.argsort(np.abs((angles - req.prefer + math.pi) % (2 * math.pi) - math.pi), kind="stable")
             dirs = angles[order]
             best = None
-            for gaps, leader in ((GAPS, False), (LEADER_GAPS, True)):
-                g = np.array([max(gap, req.near) for gap in gaps])[:, None]
-                ux, uy = np.cos(dirs)[None, :], np.sin(dirs)[None, :]
-                # the box's centre sits so that its edge nearest the anchor is ``gap`` away
-                hw, hh = w / 2, (h_up + h_down) / 2
-                reach = np.abs(ux) * hw + np.abs(uy) * hh
-                cx = req.anchor[0] + ux * (g + reach)
-                cy = req.anchor[1] + uy * (g + reach)
-                x0 = (cx - hw).ravel()
-                y0 = (cy - hh).ravel()
-                x1, y1 = x0 + w, y0 + h_up + h_down
-                free = (x0 >= self.area.x0) & (x1 <= self.area.x1) & (y0 >= self.area.y0) & (y1 <= self.area.y1)
-                hits = np.zeros(len(x0), dtype=int)
-                c = CLEARANCE
-                for p in self.placed:
-                    hits += (x0 < p.x1 + c) & (p.x0 < x1 + c) & (y0 < p.y1 + c) & (p.y0 < y1 + c)
-                boxes = shapely.box(x0 - c, y0 - c, x1 + c, y1 + c)
-                if tree is not None:
-                    idx = tree.query(boxes, predicate="intersects")[0]
-                    np.add.at(hits, idx, 1)
-                for seg in self._leaders:
-                    hits += shapely.intersects(boxes, seg)
+            for gaps, leader in _STAGES:
+                x0, y0, hits, free = self._candidates(req, dirs, gaps, w, h_up + h_down, tree, leader)
                 ok = np.flatnonzero(free & (hits == 0))
                 if len(ok):
                     k = int(ok[0])
-                    chosen = (x0[k], y0[k], x1[k], y1[k])
+                    chosen = (x0[k], y0[k])
                     break
                 score = hits + (~free) * 1000
                 k = int(np.argmin(score))
                 if best is None or score[k] < best[0]:
-                    best = (score[k], (x0[k], y0[k], x1[k], y1[k]), leader)
+                    best = (score[k], (x0[k], y0[k]), leader)
             else:
                 self.crowded += 1
                 chosen, leader = best[1], best[2]
-            bx = Box(*chosen)
+            bx = Box(chosen[0], chosen[1], chosen[0] + w, chosen[1] + h_up + h_down)
             self.placed.append(bx)
-            base = (bx.x0, bx.y0 + h_up)
-            req.parent.add(self._text_el(req.parts, base, req.size, req.italic, "start", req.ident or None,
-                                         req.fill))
+            req.parent.add(self._text_el(req.parts, (bx.x0, bx.y0 + h_up), req.size, req.italic, "start",
+                                         req.ident or None, req.fill))
             if leader:
                 self._leader(leader_parent, req.anchor, bx)
         self._requests.clear()
+
+    def _candidates(self, req: _Request, dirs, gaps, w: float, h: float, tree, leader: bool):
+        """Candidate boxes (left, top) at ``gaps`` × ``dirs`` around the anchor, how many
+        things each touches, and whether each lies in the drawing area."""
+        g = np.array([max(gap, req.near) for gap in gaps])[:, None]
+        ux, uy = np.cos(dirs)[None, :], np.sin(dirs)[None, :]
+        hw, hh = w / 2, h / 2
+        reach = np.abs(ux) * hw + np.abs(uy) * hh   # the box's edge nearest the anchor is ``gap`` away
+        x0 = (req.anchor[0] + ux * (g + reach) - hw).ravel()
+        y0 = (req.anchor[1] + uy * (g + reach) - hh).ravel()
+        x1, y1 = x0 + w, y0 + h
+        a = self.area
+        free = (x0 >= a.x0) & (x1 <= a.x1) & (y0 >= a.y0) & (y1 <= a.y1)
+        c = CLEARANCE
+        hits = np.zeros(len(x0), dtype=int)
+        if self.placed:
+            p = np.array([(q.x0, q.y0, q.x1, q.y1) for q in self.placed])
+            hits += ((x0[:, None] < p[None, :, 2] + c) & (p[None, :, 0] < x1[:, None] + c)
+                     & (y0[:, None] < p[None, :, 3] + c) & (p[None, :, 1] < y1[:, None] + c)).sum(axis=1)
+        boxes = shapely.box(x0 - c, y0 - c, x1 + c, y1 + c)
+        if tree is not None:
+            np.add.at(hits, tree.query(boxes, predicate="intersects")[0], 1)
+        for seg in self._leaders:
+            hits += shapely.intersects(boxes, seg)
+        if leader and self.placed:   # a leader may cross lines, never another label
+            ends = np.stack([np.clip(req.anchor[0], x0, x1), np.clip(req.anchor[1], y0, y1)], axis=1)
+            starts = np.broadcast_to(np.array(req.anchor, dtype=float), ends.shape)
+            legs = shapely.linestrings(np.stack([starts, ends], axis=1))
+            others = shapely.union_all([shapely.box(q.x0, q.y0, q.x1, q.y1) for q in self.placed])
+            hits += shapely.intersects(legs, others)
+        return x0, y0, hits, free
 
     def _leader(self, parent, anchor, bx: Box) -> None:
         """A thin line from the anchor to the nearest point of the label's box."""
