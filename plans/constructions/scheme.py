@@ -1,8 +1,18 @@
 """The kinematic scheme at one position, as geometry in paper millimetres (y up): world
-coordinates divided by μl. Symbols (joints, blocks, supports) keep paper sizes."""
+coordinates divided by μl. Symbols (joints, blocks, supports, arc arrows) keep paper sizes.
+
+Besides the links, pairs and guides, the scheme holds what a textbook scheme marks: the
+driving crank's angle φ1 (an arc from the reference direction through the pivot to the
+crank), the arc arrows ω1 and, when it is not zero, ε1 (their senses from their signs), and
+on request (``senses=True``) the arc arrows ω_j, ε_j of every other moving link. A slotted
+link's slot is joined to the rest of its link (a stem, as the yoke of a Scotch yoke), and two
+blocks on one pin are drawn apart: the one on the frame guide is moved along its guide and
+carried from the pin by a short rod, as textbooks draw a block on a rod.
+"""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -10,31 +20,74 @@ import numpy as np
 from ..kinematics import Motion
 from ..scene import FRAME
 
-__all__ = ["Scheme", "Block", "Guide", "scheme", "BLOCK_MM"]
+__all__ = ["Scheme", "Block", "Guide", "Arc", "scheme", "BLOCK_MM", "HEAD_MM", "SENSE_HEAD_MM"]
 
 #: Slider block size along and across its guide, mm.
 BLOCK_MM = (12.0, 7.0)
 #: How far a guide runs beyond the positions its slider takes, mm.
 GUIDE_MARGIN_MM = 10.0
+#: How far a slot (a moving guide) runs beyond its block's end, mm.
+SLOT_MARGIN_MM = 3.0
+#: Free length of the rod that carries a block moved off its pin, mm.
+ROD_GAP_MM = 3.0
+#: Arrowhead length of the drive's arc arrows ω1, ε1, and of the links' ω_j, ε_j, mm.
+HEAD_MM = 3.0
+SENSE_HEAD_MM = 2.5
+#: Sweep of the drive's arc arrows and of the links' ones, degrees.
+ARROW_SWEEP = 70.0
+SENSE_SWEEP = 90.0
+#: A point this close to a line (mm) lies on it.
+ON_LINE_MM = 1e-6
 
 
 @dataclass(frozen=True)
 class Block:
-    """A slider block centred on the pair's point, turned to the guide's direction (deg)."""
+    """A slider block centred at ``center``, turned to the guide's direction (deg). ``pin`` is
+    the pair's point when the block was moved off it along its guide (another block sits on
+    the pin): the block is then carried from the pin by a rod along the guide."""
 
     link: str
     center: tuple[float, float]
     angle: float
+    pin: tuple[float, float] | None = None
 
 
 @dataclass(frozen=True)
 class Guide:
-    """A guide segment; ``fixed`` guides (on the frame) are hatched."""
+    """A guide segment; ``fixed`` guides (on the frame) are hatched. A moving guide (a slot)
+    whose link has no point on the slot's line carries a ``stem``: the segment from the foot
+    on the slot to the nearest point of its link, perpendicular to the slot (rigid)."""
 
     link: str
     start: tuple[float, float]
     end: tuple[float, float]
     fixed: bool
+    stem: tuple[tuple[float, float], tuple[float, float]] | None = None
+
+
+@dataclass(frozen=True)
+class Arc:
+    """An arc about ``centre`` of ``radius`` (mm) from ``start`` (deg, from +x, CCW) through
+    ``sweep`` degrees (CCW positive). ``kind`` is "phi" (the drive's angle, no head; its
+    reference line is drawn along ``start``), "omega" or "epsilon" (an arc arrow of ``head``
+    mm at the end). ``label`` is in label markup."""
+
+    kind: str
+    link: str
+    centre: tuple[float, float]
+    radius: float
+    start: float
+    sweep: float
+    label: str
+    head: float = 0.0
+
+    @property
+    def end(self) -> float:
+        return self.start + self.sweep
+
+    def at(self, angle: float) -> tuple[float, float]:
+        t = math.radians(angle)
+        return (self.centre[0] + self.radius * math.cos(t), self.centre[1] + self.radius * math.sin(t))
 
 
 @dataclass(frozen=True)
@@ -49,40 +102,183 @@ class Scheme:
     blocks: tuple[Block, ...]
     guides: tuple[Guide, ...]
     drive_pivot: str | None
-    omega: float
+    omega: float                                     # ω1, rad/s (a linear drive: its speed, m/s)
+    epsilon: float = 0.0                             # ε1, rad/s² (a linear drive: m/s²)
+    phi: float | None = None                         # φ1, deg, from ``reference`` (a rotary drive)
+    reference: float = 0.0                           # direction φ1 is measured from, deg
+    dots: tuple[str, ...] = ()                       # points on a link that are no pair (coupler points)
+    arcs: tuple[Arc, ...] = ()                       # φ1, ω1, ε1 and, on request, ω_j, ε_j
 
 
 def _xy(v: np.ndarray) -> tuple[float, float]:
     return (float(v[0]), float(v[1]))
 
 
-def scheme(motion: Motion, i: int, mu_l: float) -> Scheme:
-    """The scheme at position ``i``; ``mu_l`` in m/mm."""
+def _sub(name: str) -> str:
+    return f"_{{{name}}}"
+
+
+def _half_extent(angle: float, along: float) -> float:
+    """Half the extent of a block turned to ``angle`` (deg), measured along direction ``along``."""
+    d = math.radians(along - angle)
+    return BLOCK_MM[0] / 2 * abs(math.cos(d)) + BLOCK_MM[1] / 2 * abs(math.sin(d))
+
+
+def scheme(motion: Motion, i: int, mu_l: float, *, senses: bool = False) -> Scheme:
+    """The scheme at position ``i``; ``mu_l`` in m/mm. With ``senses``, arc arrows ω_j (and
+    ε_j when accelerations are known) of every moving link but the driving one."""
     mech = motion.mechanism
     points = {p: _xy(motion.position(p)[i] / mu_l) for p in mech.sketch}
     shared = [p for p in mech.sketch if sum(p in l.local for l in mech.links.values()) > 1]
     joints = tuple(p for p in shared if any(p in mech.links[l].local for l in mech.moving))
     supports = tuple(p for p in mech.links[FRAME].points if p in joints)
-    blocks, guides = [], []
-    for pr in mech.prismatics:
-        state = motion.links[pr.guide]
-        u = state.direction(pr.direction)
-        angle = float(np.degrees(np.arctan2(u[i, 1], u[i, 0])))
-        center = motion.position(pr.label)[i] / mu_l
-        if len(mech.links[pr.slider].points) == 1:
-            blocks.append(Block(pr.slider, _xy(center), angle))
-        # the guide covers the slider's travel over every analysed position
-        anchor = state.point(pr.anchor[pr.guide])[i] / mu_l
-        travel = motion.position(pr.label) / mu_l
-        anchors = state.point(pr.anchor[pr.guide]) / mu_l
-        rel = [float(np.dot(travel[j] - anchors[j], u[j])) for j in range(len(travel))]
-        # a frame guide runs past the travel; a moving guide (a slotted link) stays within it
-        margin = BLOCK_MM[0] / 2 + (GUIDE_MARGIN_MM if pr.guide == FRAME else 0.0)
-        t0 = min(rel + [0.0]) - margin
-        t1 = max(rel + [0.0]) + margin
-        guides.append(Guide(pr.guide, _xy(anchor + t0 * u[i]), _xy(anchor + t1 * u[i]), pr.guide == FRAME))
+    blocks, offsets = _blocks(motion, i, mu_l, points)
+    guides = [_guide(motion, i, mu_l, pr, offsets.get(id(pr), 0.0), points) for pr in mech.prismatics]
     links = tuple((name, mech.links[name].points) for name in mech.moving)
+    centres = {b.center for b in blocks}
+    dots = tuple(p for p in mech.sketch if p not in joints and points[p] not in centres)
     d = mech.drive
+    phi = reference = None
+    arcs: list[Arc] = []
+    if d.kind == "rotary":
+        phi = float(motion.values[i])
+        c, tip = np.asarray(points[d.pivot]), np.asarray(points[d.tip])
+        crank = float(np.degrees(np.arctan2(*(tip - c)[::-1])))
+        reference = (crank - phi + 180.0) % 360.0 - 180.0
+        if abs(reference) < 1e-9:
+            reference = 0.0
+        arcs = _drive_arcs(d, c, float(np.linalg.norm(tip - c)), crank, phi, reference)
+    if senses:
+        arcs += _sense_arcs(motion, i, points, blocks)
     return Scheme(mu_l=mu_l, points=points, links=links, joints=joints, supports=supports,
                   blocks=tuple(blocks), guides=tuple(guides),
-                  drive_pivot=d.pivot if d.kind == "rotary" else None, omega=d.speed)
+                  drive_pivot=d.pivot if d.kind == "rotary" else None, omega=d.speed, epsilon=d.rate,
+                  phi=phi, reference=reference if reference is not None else 0.0, dots=dots, arcs=tuple(arcs))
+
+
+def _blocks(motion: Motion, i: int, mu_l: float, points) -> tuple[list[Block], dict[int, float]]:
+    """The blocks of single-point sliders; of two or more blocks on one pin the first whose
+    guide moves (a block in a slot) stays on the pin, the others are moved along their guides
+    clear of it. Returns the blocks and the offsets (mm along the guide) by pair."""
+    mech = motion.mechanism
+    found = []
+    for pr in mech.prismatics:
+        if len(mech.links[pr.slider].points) != 1:
+            continue
+        u = motion.links[pr.guide].direction(pr.direction)[i]
+        angle = float(np.degrees(np.arctan2(u[1], u[0])))
+        found.append((pr, _xy(motion.position(pr.label)[i] / mu_l), angle))
+    groups: list[list] = []
+    for f in found:
+        grp = next((g for g in groups if math.dist(g[0][1], f[1]) < 1e-6), None)
+        (grp.append(f) if grp is not None else groups.append([f]))
+    blocks, offsets = [], {}
+    others = [np.asarray(xy) for xy in points.values()]
+    for grp in groups:
+        grp.sort(key=lambda f: f[0].guide == FRAME)        # a block in a slot stays on its pin
+        pin = grp[0][1]
+        blocks.append(Block(grp[0][0].slider, pin, grp[0][2]))
+        placed = [grp[0][2]]
+        for pr, _, angle in grp[1:]:
+            u = np.array([math.cos(math.radians(angle)), math.sin(math.radians(angle))])
+            reach = max(_half_extent(a, angle) for a in placed)
+            s = reach + ROD_GAP_MM + BLOCK_MM[0] / 2 + (len(placed) - 1) * (BLOCK_MM[0] + ROD_GAP_MM)
+            far = [p for p in others if math.dist(p, pin) > 1e-6]
+
+            def room(sign: float) -> float:
+                c = np.asarray(pin) + sign * s * u
+                return min((float(np.linalg.norm(p - c)) for p in far), default=math.inf)
+
+            sign = 1.0 if room(1.0) >= room(-1.0) else -1.0
+            centre = np.asarray(pin) + sign * s * u
+            blocks.append(Block(pr.slider, _xy(centre), angle, pin))
+            offsets[id(pr)] = sign * s
+            placed.append(angle)
+    return blocks, offsets
+
+
+def _guide(motion: Motion, i: int, mu_l: float, pr, offset: float, points) -> Guide:
+    """The guide of pair ``pr``: over the slider's travel at every analysed position (and its
+    block, when moved ``offset`` mm along the guide). A frame guide runs past the travel; a
+    slot runs a little past its block and reaches its own link: to a point of the link on its
+    line, or, when none is, past the foot of a stem from the link's nearest point (a yoke)."""
+    mech = motion.mechanism
+    state = motion.links[pr.guide]
+    u = state.direction(pr.direction)
+    anchor = state.point(pr.anchor[pr.guide])[i] / mu_l
+    travel = motion.position(pr.label) / mu_l
+    anchors = state.point(pr.anchor[pr.guide]) / mu_l
+    rel = [float(np.dot(travel[j] - anchors[j], u[j])) for j in range(len(travel))]
+    rel += [r + offset for r in rel] if offset else []
+    fixed = pr.guide == FRAME
+    margin = BLOCK_MM[0] / 2 + (GUIDE_MARGIN_MM if fixed else SLOT_MARGIN_MM)
+    t0 = min(rel + [0.0]) - margin
+    t1 = max(rel + [0.0]) + margin
+    ui = u[i]
+    stem = None
+    if not fixed:
+        own = [np.asarray(points[p]) for p in mech.links[pr.guide].points]
+        along = [float(np.dot(p - anchor, ui)) for p in own]
+        across = [abs(float(ui[0] * (p - anchor)[1] - ui[1] * (p - anchor)[0])) for p in own]
+        on = [t for t, d in zip(along, across) if d < ON_LINE_MM]
+        if on:
+            t0, t1 = min([t0] + on), max([t1] + on)
+        elif own:
+            k = int(np.argmin(across))
+            t = along[k]
+            t0, t1 = min(t0, t - margin), max(t1, t + margin)
+            stem = (_xy(anchor + t * ui), _xy(own[k]))
+    return Guide(pr.guide, _xy(anchor + t0 * ui), _xy(anchor + t1 * ui), fixed, stem)
+
+
+def _drive_arcs(d, c: np.ndarray, length: float, crank: float, phi: float, reference: float) -> list[Arc]:
+    """φ1 from the reference direction to the crank; ω1 and ε1 (when not zero) across the crank."""
+    centre = _xy(c)
+    r_phi = min(max(0.3 * length, 6.0), 14.0)
+    arcs = []
+    sweep = math.copysign(abs(phi) % 360.0, phi)
+    if abs(sweep) > 1e-9:
+        arcs.append(Arc("phi", d.link, centre, r_phi, reference, sweep, "φ" + _sub(d.link)))
+    r = r_phi + 4.5
+    for kind, value, sym in (("omega", d.speed, "ω"), ("epsilon", d.rate, "ε")):
+        if value != 0.0:
+            s = math.copysign(1.0, value)
+            arcs.append(Arc(kind, d.link, centre, r, crank - s * ARROW_SWEEP / 2, s * ARROW_SWEEP,
+                            sym + _sub(d.link), HEAD_MM))
+            r += 4.5
+    return arcs
+
+
+def _sense_arcs(motion: Motion, i: int, points, blocks: list[Block]) -> list[Arc]:
+    """ω_j, ε_j arc arrows at the middle of every moving link but the driving one."""
+    mech = motion.mechanism
+    if motion.order < 1:
+        return []
+    arcs = []
+    kinds = ("omega", "epsilon") if motion.order >= 2 else ("omega",)
+    scale = {k: max([1.0] + [abs(float(getattr(motion.links[n], k)[i])) for n in mech.moving]) for k in kinds}
+    for name in mech.moving:
+        if name == mech.drive.link:
+            continue
+        state = motion.links[name]
+        pts = mech.links[name].points
+        xy = np.array([points[p] for p in pts])
+        block = next((b for b in blocks if b.link == name), None)
+        if len(pts) >= 2:
+            mid = xy.mean(axis=0)
+            e = xy[1] - xy[0]
+            across = float(np.degrees(np.arctan2(e[1], e[0])))
+            r = 7.0
+        else:
+            mid = np.asarray(block.center if block else xy[0])
+            across = (block.angle if block else 0.0) + 90.0
+            r = 0.5 * math.hypot(*BLOCK_MM) + 2.0
+        for kind in kinds:
+            value, sym = float(getattr(state, kind)[i]), "ω" if kind == "omega" else "ε"
+            if abs(value) <= 1e-9 * scale[kind]:
+                continue   # the link translates (or its ω is momentarily constant)
+            s = math.copysign(1.0, value)
+            arcs.append(Arc(kind, name, _xy(mid), r, across - s * SENSE_SWEEP / 2, s * SENSE_SWEEP,
+                            sym + _sub(name), SENSE_HEAD_MM))
+            r += 4.0
+    return arcs

@@ -1,5 +1,7 @@
-"""The kinematic scheme's symbols on a sheet: links and plates, slider blocks, guides,
-frame supports, pins, the drive's arrow, and the labels of points and links."""
+"""The kinematic scheme's symbols on a sheet: guides (a slot joined to its link by a stem),
+links and plates (bars over plates), slider blocks (a block moved off a shared pin on its
+rod), frame supports, pins, coupler points as dots, the drive's angle φ1 and arc arrows ω1,
+ε1 (and the links' ω_j, ε_j when the scheme has them), and the labels of points and links."""
 
 from __future__ import annotations
 
@@ -7,12 +9,19 @@ import math
 
 import numpy as np
 
-from ..constructions.scheme import BLOCK_MM, Scheme
+from ..constructions.scheme import BLOCK_MM, Arc, Scheme
 from .canvas import Canvas, fmt
-from .marks import arrow as _arrow, markup as _markup
+from .marks import markup as _markup
 from .style import Style
 
-__all__ = ["scheme_layers"]
+__all__ = ["scheme_layers", "DOT_MM"]
+
+#: Radius of the dot that marks a coupler point (a point of a link that is no pair), mm.
+DOT_MM = 0.75
+#: Reference line of φ1: how far it runs beyond the φ1 arc, mm.
+REFERENCE_OVERRUN_MM = 5.0
+#: Largest angle step of a drawn arc, degrees.
+ARC_STEP = 3.0
 
 
 def _hatch(a, b, side: float, style: Style) -> list[tuple[tuple[float, float], tuple[float, float]]]:
@@ -26,15 +35,47 @@ def _hatch(a, b, side: float, style: Style) -> list[tuple[tuple[float, float], t
     return [(tuple(a + u * (t + 0.5) * L / count), tuple(a + u * (t + 0.5) * L / count + d)) for t in range(count)]
 
 
+def _arc_points(arc: Arc, start: float, end: float) -> list[tuple[float, float]]:
+    n = max(int(math.ceil(abs(end - start) / ARC_STEP)), 1)
+    return [arc.at(start + (end - start) * k / n) for k in range(n + 1)]
+
+
+def _draw_arc(canvas: Canvas, g, labels, arc: Arc, ident: str, style: Style) -> None:
+    """An arc (φ: with its reference line) or an arc arrow (ω, ε: head at the end), labelled."""
+    thin = fmt(style.thin, 3)
+    key = f"{ident}-{arc.kind}"
+    if arc.kind == "phi":
+        ref = arc.at(arc.start)
+        far = np.add(arc.centre, (arc.radius + REFERENCE_OVERRUN_MM) / arc.radius * np.subtract(ref, arc.centre))
+        canvas.line(g, arc.centre, far, width=style.thin, stroke_width=thin, id=f"{key}{arc.link}ref")
+        pts = _arc_points(arc, arc.start, arc.end)
+        el = canvas.polyline(g, pts, width=style.thin, stroke_width=thin, id=f"{key}{arc.link}")
+    else:
+        back = math.copysign(math.degrees(arc.head / arc.radius), arc.sweep)
+        pts = _arc_points(arc, arc.start, arc.end - back)
+        el = canvas.polyline(g, pts, width=style.thin, stroke_width=thin, id=f"{key}{arc.link}")
+        h = canvas.head(g, pts[-1], arc.at(arc.end), arc.head, fill=style.colour, stroke="none",
+                        id=f"{key}{arc.link}h")
+        h.attribs["class"] = "head"
+        h.attribs["data-for"] = f"{key}{arc.link}"
+    el.attribs["data-kind"] = arc.kind
+    el.attribs["data-link"] = arc.link
+    mid = arc.at(arc.start + arc.sweep / 2 if arc.kind == "phi" else arc.end)
+    canvas.label(labels, mid, arc.label, size=style.text, prefer=np.subtract(mid, arc.centre),
+                 ident=f"{key}{arc.link}l", digits=False, near=0.5)
+
 
 def scheme_layers(dwg, canvas: Canvas, sch: Scheme, ident: str, style: Style) -> None:
     g = dwg.g(id=f"{ident}-scheme", stroke=style.colour, fill="none", stroke_linecap="round")
     g.attribs["data-mu"] = repr(sch.mu_l)
     g.attribs["data-plan"] = "scheme"
     thin = fmt(style.thin, 3)
+    link_w = fmt(style.link, 3)
     for k, gd in enumerate(sch.guides):
         w = style.link if not gd.fixed else style.vector
         canvas.line(g, gd.start, gd.end, width=w, stroke_width=fmt(w, 3), id=f"{ident}-guide{k}")
+        if gd.stem is not None:   # the slot is rigid with its link: one piece, as a yoke
+            canvas.line(g, gd.stem[0], gd.stem[1], width=style.link, stroke_width=link_w, id=f"{ident}-stem{k}")
         if gd.fixed:
             off = BLOCK_MM[1] / 2
             u = np.subtract(gd.end, gd.start) / np.linalg.norm(np.subtract(gd.end, gd.start))
@@ -45,18 +86,23 @@ def scheme_layers(dwg, canvas: Canvas, sch: Scheme, ident: str, style: Style) ->
     plates = [(name, pts) for name, pts in sch.links if len(pts) >= 3]
     bars = [(name, pts) for name, pts in sch.links if len(pts) == 2]
     for name, pts in plates:   # plates first: bars pinned to them are drawn over their fill
-        canvas.polygon(g, [sch.points[p] for p in pts], width=style.link, stroke_width=fmt(style.link, 3),
+        canvas.polygon(g, [sch.points[p] for p in pts], width=style.link, stroke_width=link_w,
                        fill="#eef2fb", stroke_linejoin="round", id=f"{ident}-link{name}")
     for name, pts in bars:
-        canvas.line(g, sch.points[pts[0]], sch.points[pts[1]], width=style.link, stroke_width=fmt(style.link, 3),
+        canvas.line(g, sch.points[pts[0]], sch.points[pts[1]], width=style.link, stroke_width=link_w,
                     id=f"{ident}-link{name}")
-    for k, b in enumerate(sch.blocks):
+    for b in sch.blocks:
+        if b.pin is not None:   # a block moved off its pin: carried on a rod along its guide
+            canvas.line(g, b.pin, b.center, width=style.link, stroke_width=link_w, id=f"{ident}-rod{b.link}")
+    for b in sch.blocks:
         u = np.array([math.cos(math.radians(b.angle)), math.sin(math.radians(b.angle))])
         n = np.array([-u[1], u[0]])
         hl, hw = BLOCK_MM[0] / 2, BLOCK_MM[1] / 2
         corners = [np.add(b.center, sx * hl * u + sy * hw * n) for sx, sy in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
-        canvas.polygon(g, corners, width=style.link, fill="#fff", stroke_width=fmt(style.link, 3),
-                       id=f"{ident}-block{b.link}")
+        canvas.polygon(g, corners, width=style.link, fill="#fff", stroke_width=link_w, id=f"{ident}-block{b.link}")
+    labels = dwg.g(id=f"{ident}-labels", fill=style.colour)
+    for arc in sch.arcs:   # under the supports and pins: a pin's circle covers the lines' ends
+        _draw_arc(canvas, g, labels, arc, ident, style)
     for k, p in enumerate(sch.supports):
         c = np.asarray(sch.points[p])
         s = style.support_size
@@ -68,16 +114,8 @@ def scheme_layers(dwg, canvas: Canvas, sch: Scheme, ident: str, style: Style) ->
     for k, p in enumerate(sch.joints):
         canvas.circle(g, sch.points[p], style.joint_radius, filled=True, fill="#fff", stroke_width=fmt(style.vector, 3),
                       id=f"{ident}-j{k}")
-    labels = dwg.g(id=f"{ident}-labels", fill=style.colour)
-    if sch.drive_pivot:
-        c = np.asarray(sch.points[sch.drive_pivot])
-        r = 9.0
-        sgn = 1.0 if sch.omega >= 0 else -1.0
-        angles = np.radians(np.linspace(20.0, 110.0, 10)) * sgn + (0.0 if sgn > 0 else math.pi)
-        arc = [c + r * np.array([math.cos(t), math.sin(t)]) for t in angles]
-        canvas.polyline(g, arc[:-1], stroke_width=thin, id=f"{ident}-omega")
-        _arrow(canvas, g, arc[-3], arc[-1], style.colour, f"{ident}-omegah", style)
-        canvas.label(labels, arc[-1], "ω_1", size=style.text, prefer=arc[-1] - c, ident=f"{ident}-omegal", digits=False)
+    for k, p in enumerate(sch.dots):   # coupler points: small filled dots, not pins
+        canvas.circle(g, sch.points[p], DOT_MM, filled=True, fill=style.colour, stroke="none", id=f"{ident}-dot{k}")
     dwg.add(g)
     centre = np.mean(list(sch.points.values()), axis=0)
     on_block = {b.center for b in sch.blocks}
@@ -85,6 +123,7 @@ def scheme_layers(dwg, canvas: Canvas, sch: Scheme, ident: str, style: Style) ->
         near = 0.5 * math.hypot(*BLOCK_MM) if xy in on_block else style.joint_radius + 0.3
         canvas.label(labels, xy, _markup(name), size=style.text, prefer=np.subtract(xy, centre), ident=f"{ident}-p{k}",
                      digits=False, near=near)
+    blocks = {b.link: b for b in sch.blocks}
     for name, pts in sch.links:
         xy = np.array([sch.points[p] for p in pts])
         mid = xy.mean(axis=0)
@@ -93,8 +132,11 @@ def scheme_layers(dwg, canvas: Canvas, sch: Scheme, ident: str, style: Style) ->
             u = u / (np.linalg.norm(u) or 1.0)
             prefer = np.array([-u[1], u[0]])
             near = 0.6
-        else:
-            prefer, near = np.array([0.0, 1.0]), BLOCK_MM[1] / 2 + 0.5
+        else:   # a block: its number by the block (moved off the pin, by the moved block)
+            b = blocks.get(name)
+            mid = np.asarray(b.center) if b else mid
+            prefer = np.array([0.0, 1.0]) if b is None or b.pin is None else np.subtract(b.center, b.pin)
+            near = BLOCK_MM[1] / 2 + 0.5
         canvas.label(labels, tuple(mid), name, size=style.small_text, italic=False, prefer=prefer,
                      ident=f"{ident}-n{name}", digits=False, near=near)
     dwg.add(labels)
