@@ -99,7 +99,8 @@ def centres_sheet(motion: Motion, ic: Centres, i: int) -> CentresSheet:
             near[name] = p
     specials = _special_points(motion, i)
     reach = [v for v in specials.values() if np.linalg.norm(v[0] - middle) <= REACH * size]
-    every = np.array(list(world.values()) + list(near.values()) + [r[0] for r in reach])
+    travel = [motion.position(p) for p in mech.sketch]   # every position: the scheme's guides cover the travel
+    every = np.concatenate([np.concatenate(travel), np.array(list(near.values()) + [r[0] for r in reach]).reshape(-1, 2)])
     ext = every.max(axis=0) - every.min(axis=0)
     mu = max(fitting_scale(float(ext[0]) or size, SHEET_MM[0]), fitting_scale(float(ext[1]) or size, SHEET_MM[1]))
     sch = scheme(motion, i, mu)

@@ -242,7 +242,7 @@ class Canvas:
             ends = np.stack([np.clip(req.anchor[0], x0, x1), np.clip(req.anchor[1], y0, y1)], axis=1)
             starts = np.broadcast_to(np.array(req.anchor, dtype=float), ends.shape)
             legs = shapely.linestrings(np.stack([starts, ends], axis=1))
-            others = shapely.union_all([shapely.box(q.x0, q.y0, q.x1, q.y1) for q in self.placed])
+            others = shapely.union_all([shapely.box(q.x0 - c, q.y0 - c, q.x1 + c, q.y1 + c) for q in self.placed])
             hits += shapely.intersects(legs, others)
         return x0, y0, hits, free
 

@@ -23,6 +23,9 @@ __all__ = ["Format", "FORMATS", "choose_format", "TitleBlock", "new_sheet", "FRA
 
 #: Frame margins left, top, right, bottom, mm.
 FRAME_MM = (20.0, 5.0, 5.0, 5.0)
+#: The drawing area keeps this far inside the frame's centreline and the title block: half the
+#: frame's 0.7 mm line and a little air, mm.
+AREA_INSET_MM = 1.0
 #: Title block width and height, mm.
 TITLE_BLOCK_MM = (185.0, 35.0)
 
@@ -38,7 +41,7 @@ class Format:
     @property
     def area(self) -> Box:
         """The drawing area: inside the frame, above the title block (paper mm, y down)."""
-        left, top, right, bottom = FRAME_MM
+        left, top, right, bottom = (m + AREA_INSET_MM for m in FRAME_MM)
         return Box(left, top, self.width - right, self.height - bottom - TITLE_BLOCK_MM[1])
 
 
