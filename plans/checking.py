@@ -41,6 +41,9 @@ mechanism at rest, or a construction not drawn at that position, as its subtitle
 other file without a tagged vector — a plan whose tags were removed, or an SVG not written by
 plans — fails ("no tagged vectors: not a plan written by plans"). A centres sheet's measured
 segments ``r:X/Pj`` run from the centre Pj to the point X and are checked like vectors.
+A group with ``data-plan="bound"`` holds vectors drawn at their points of application on a
+scheme (Koshel's V_S1, V_S2 drawn from S1, S2 in the plan's scale): each is measured for
+length and direction, but its ends are no plan images, so it adds no closure equation.
 """
 
 from __future__ import annotations
@@ -70,6 +73,8 @@ WRITER_PRECISION = Style().precision
 _REL = 1e-9
 #: Plans whose vectors are measured; a group with another ``data-plan`` is a plan too unless "scheme".
 SCHEME = "scheme"
+#: Vectors drawn at their points of application (measured, never closed: see the module docstring).
+BOUND = "bound"
 #: Kind of a plan sheet its writer drew with no vector (``data-vectors="0"``): the pole alone.
 EMPTY = "empty"
 #: Root ids written for plan sheets (a sheet claiming to be a plan must carry tagged vectors).
@@ -349,11 +354,14 @@ def _check_group(report: SvgReport, g: ET.Element, lines: list[ET.Element]) -> N
                 angle_err = math.acos(max(-1.0, min(1.0, cos)))
                 angle_tol = math.asin(min(1.0, r / exact_mm)) + _REL
         report.measurements.append(Measurement(q, plan, length, mu, value, tol, angle_err, angle_tol, problem))
+        if plan == BOUND:
+            continue
         tail, head, absolute = _ends(q)
         for which, pt, name, label in (("tail", (x1, y1), tail, line.get("data-from")),
                                        ("head", (x2, y2), head, line.get("data-to"))):
             ends.append((f"{q} {which}", pt, absolute, name, label))
-    _closures(report, gid, ends, r + _REL)
+    if plan != BOUND:
+        _closures(report, gid, ends, r + _REL)
 
 
 def _closures(report: SvgReport, gid: str, ends: list, tol: float) -> None:

@@ -16,9 +16,9 @@ from .constructions import Scales, acceleration_plan, choose_scales, scheme, unc
 from .constructions.plans import Plan, PlanPoint
 from .constructions.scales import extent_of
 from .constructions.centres import centres_sheet
-from .constructions.koshel import KOSHEL_MAX_MM, fit_segment
-from .constructions.plans import UNCERTAIN_MM
+from .constructions.koshel import fit_segment, koshel_sheet
 from .drawing import Heading, Style, draw_centres, draw_plan, draw_scheme
+from .drawing.koshel import draw_koshel
 from .errors import ConstructionError, PlansError
 from .kinematics import WARN_SIN, Motion, analyse, special
 from .kinematics.centres import Centres, centres
@@ -338,14 +338,16 @@ def _koshel(motion: Motion, i: int, g: ComplexGroup, still: bool, *, title: str,
             if failures else ""
     if still:       # the mechanism at rest: said once for the whole scene
         return _empty_sheet("velocity", heading, why=_rest_note(motion, "velocity"), ident=ident, style=style), ""
+    if not why:
+        try:
+            sheet = koshel_sheet(motion, i, g, plan, segment)
+        except ConstructionError as exc:
+            why = str(exc)
     if why:
         return _empty_sheet("velocity", heading, why=f"not drawn at this position: {why}", ident=ident,
                             style=style), why
-    first = next(v for v in plan.vectors if v.kind == "absolute")
-    note = (f"p{first.quantity[2:].lower()} = {segment:g} mm ⊥ P_{{{g.base}}}{first.quantity[2:]}, arbitrary: the longest "
-            f"of the series ≤ {UNCERTAIN_MM:g} mm that keeps the plan within {KOSHEL_MAX_MM:g} mm; "
-            "then the scale from the crank pin's speed")
-    return draw_plan(plan, heading, ident=ident, style=style, notes=(note,)), ""
+    heading = Heading(title, f"Koshel's method: centre P{g.base} and velocity plan in an uncertain scale", label)
+    return draw_koshel(sheet, heading, ident=ident, style=style), ""
 
 
 #: Largest relative difference allowed between the two solutions of a class III group.
