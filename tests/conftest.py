@@ -9,6 +9,15 @@ EXAMPLES = sorted((Path(__file__).resolve().parent.parent / "plans" / "examples"
 CRANK_SLIDER = next(p for p in EXAMPLES if p.stem == "crank_slider_central")
 
 
+def sheet_words(svg_text: str) -> str:
+    """Everything a sheet writes, one ``<text>`` per line, its runs joined (a subscript run
+    follows its base: P<sub>3</sub> reads "P3")."""
+    import xml.etree.ElementTree as ET
+
+    root = ET.fromstring(svg_text)
+    return "\n".join("".join(t.itertext()) for t in root.iter("{http://www.w3.org/2000/svg}text"))
+
+
 @pytest.fixture(scope="session")
 def rendered(tmp_path_factory):
     """Every example rendered once into a temporary folder."""

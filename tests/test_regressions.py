@@ -12,7 +12,7 @@ import math
 import numpy as np
 import pytest
 
-from conftest import toml_text
+from conftest import toml_text, sheet_words
 from plans.cli import main
 from plans.constructions import acceleration_plan, velocity_plan
 from plans.kinematics import analyse
@@ -195,7 +195,8 @@ def test_triad_at_rest_keeps_every_other_sheet(tmp_path, capsys):
         for s in sfx:
             assert (out / f"rest-{kind}-{s}.svg").exists(), (kind, s)
     sheet = (out / f"rest-koshel-{sfx[1]}.svg").read_text(encoding="utf-8")
-    assert "at rest" in sheet and "|v_B|" in sheet      # the note is written as is, not as subscripts
+    words = sheet_words(sheet)
+    assert "at rest" in words and "|vB|" in words and "<tspan" in sheet   # the note's v_B with a real subscript
     measured = [str(p) for p in sorted(out.glob("*.svg")) if p.name != f"rest-koshel-{sfx[1]}.svg"]
     assert main(["check", *measured]) == 0
 
