@@ -115,8 +115,9 @@ def test_every_untouched_sheet_of_every_example_passes(rendered, capsys):
 
 
 def test_every_plan_checks_closure_equations(rendered):
-    """Every velocity, acceleration and Koshel plan of the gallery closes at least one vector
-    equation; a centres sheet does wherever two of its segments share a centre or a point."""
+    """Every velocity, acceleration and Koshel plan of the gallery with two or more vectors
+    closes at least one vector equation; a centres sheet does wherever two of its segments
+    share a centre or a point."""
     plans = 0
     for svg in sorted(rendered.glob("*.svg")):
         r = inspect_svg(svg)
@@ -130,7 +131,9 @@ def test_every_plan_checks_closure_equations(rendered):
                 assert (n > 0) == shared, (svg.name, n)
                 continue
             plans += 1
-            assert n > 0, f"{svg.name}: no closure equation checked"
+            # a plan of one vector has nothing to close: triad_at_rest at 0°, whose group is at rest
+            # (every image but a at the pole; a→b would be p→a drawn back, so only pa is drawn)
+            assert n > 0 or len(r.measurements) == 1, f"{svg.name}: no closure equation checked"
     assert plans > 50
 
 
@@ -338,7 +341,7 @@ def test_one_untagged_vector_fails(rendered, tmp_path, capsys):
 
 @pytest.mark.parametrize("sheet, quantity", [(FOUR_V, "v:B/A"), (FOUR_V, "v:M/B"), (FOUR_A, "a:B/A:t"),
                                              (FOUR_A, "a:B/C:n"), (QUICK_A, "a:A3/A2:cor"), (QUICK_A, "a:A3/A2:r"),
-                                             (QUICK_A, "a:A3/C:n"), (CLASS3_V, "v:S1/A"), (CLASS3_V, "v:F/S2"),
+                                             (QUICK_A, "a:A3/C:n"), (CLASS3_V, "v:S1/A"), (CLASS3_V, "v:C/S1"),
                                              (CLASS3_A, "a:S1/A:t"), (KOSHEL, "v:A/B")])
 def test_shifted_vector_keeps_length_and_direction_but_does_not_close(rendered, tmp_path, capsys, sheet, quantity):
     src = (rendered / sheet).read_text(encoding="utf-8")

@@ -7,12 +7,52 @@ The image of a point X is v_X/μV (a_X/μa). Each vector of the plan is a
 - ``v:X/Y`` — velocity of X relative to Y, both on one link (⊥ XY);
 - ``a:X/Y:n`` — normal component ω²·XY, from y towards n, directed X → Y;
 - ``a:X/Y:t`` — tangential component ε·XY, from n to x, ⊥ XY;
-- ``a:X/Y`` — the whole relative acceleration (similarity images of extra points);
+- ``a:X/Y`` — the whole relative acceleration |a_X − a_Y|, from y to x: drawn for every
+  rigid relation of the plan beside its components (as the textbook draws a→b beside
+  a→n_BA→b), for the similarity images of extra points, and for the sides of similar
+  figures; left out where the absolute ``a:X`` draws that very segment (y at the pole: Y
+  fixed, or its acceleration zero now), where one component is zero (the other one is the
+  whole), and relative to a special point S (no side of the link);
 - ``v:P3/P2`` — velocity of the point P of guide link 3 relative to the coincident point
   of slider link 2 (∥ guide); ``a:P3/P2:cor`` the Coriolis component 2·ω × v_rel (to
   point k), ``a:P3/P2:r`` the relative sliding acceleration (∥ guide, from k).
 
 A point name followed by a link name (``A3``) is the point of that link now at X.
+
+How the plans are built (:func:`_plan`, one :class:`_Builder` per plan): the relations of
+:func:`relations`, group by group, each drawn as its vector(s) and the construction line of
+the direction that defines an image (a group's two lines meet at the image they find);
+then the class III groups' special-point route (:func:`_special`); the absolute vectors;
+then the sides still missing of every link's similar figure (:func:`_close_figures`),
+so the images of a link with three or more points always form a closed polygon of vectors
+on both plans; last, each segment is kept once (:meth:`_Builder.finish`): no quantity is
+drawn twice, and no relative vector retraces an absolute one, either way (a point
+momentarily at rest has its image at the pole; the vector into it is the absolute one
+reversed). No vector ends at the image of a fixed point.
+
+- **Class II** groups: their pairs' relations (rigid, sliding with Coriolis).
+- **Class III** groups, *one* route through one special point S (the meeting point of the
+  axes of rods i and j; the best conditioned of the three): s from the two directions ⊥
+  those axes through the rods' known images; the third rod's pin k from s (⊥ S–k) and its
+  rod's own line; the pins of rods i and j from k (⊥ k–pin) and their rods' own lines; each
+  pin's two lines form the group ``III(…):B``. The other routes (the other special points)
+  are not drawn: the whole group is solved a second way, numerically, as a cross-check
+  (:func:`plans.render.triads`).
+- **Class IV** groups: each link with an outer pair O gives its other pins relative to O, and
+  each link without one gives its pin on the far side relative to the pin nearer the frame;
+  every relation gets its construction line (group ``IV(…):X`` per image x) and, on the
+  acceleration plan, n and τ components and the total, like a class II rigid relation. No
+  relation ends at a fixed point (one from the frame pivot starts at the pole, along the
+  absolute vector, like the four-bar's ``v:B/C``), and no quantity is drawn twice.
+
+**Labels.** Images of scene points are their lower-case names (``b``, ``a3``); the pole is
+``p`` or ``π``; special points ``s1``. Ends of components are ``n_XY`` (normal) and
+``k_XY`` (Coriolis), printed as the letter n or k with the subscript XY. Images of scene
+points win: when any image of the plan is printed with the letter n (a point N, or a point
+named ``n_…``), every normal component's end is written ``n′_XY`` instead (``n″`` if ``n′``
+is taken too, and so on), and likewise ``k′_XY`` for the Coriolis ends in a scene with a
+point K, so a printed letter never means both a point's image and a component's end. Images
+are keyed by identity (:meth:`_Builder.put`), and a label repeating another gets a prime.
 """
 
 from __future__ import annotations
@@ -94,7 +134,8 @@ class Relation:
     ``rigid``: point ``x`` relative to point ``y`` on ``link`` (``pair`` True when it is one
     of the group's equations, False for a similarity image). ``slide``: the guide's point
     relative to the slider's point at ``x`` (``frame``: the guide or slider is the frame, so
-    only a construction line through the pole is drawn).
+    only a construction line through the pole is drawn). ``lines``: the group of its
+    construction line, when it is not ``group`` (the image it helps find, ``III(…):B``).
     """
 
     kind: str
@@ -104,6 +145,11 @@ class Relation:
     group: str
     other: str = ""
     pair: bool = True
+    lines: str = ""     # group of its construction line when not ``group`` (class III/IV: per image)
+
+    @property
+    def line_group(self) -> str:
+        return self.lines or self.group
 
 
 def relations(motion: Motion) -> tuple[Relation, ...]:
@@ -122,6 +168,9 @@ def relations(motion: Motion) -> tuple[Relation, ...]:
             out += _complex_relations(g)
             if special.supports(g):
                 constructed |= {(g.base, p.point) for p in g.inner if p.kind == "R"}
+            if g.base is None:   # class IV: every pin's image comes from the group's relations
+                constructed |= {(link, p.point) for p in g.pairs if p.kind == "R" for link in (p.a, p.b)
+                                if link in g.links}
             continue
         # every sliding relation of a group is written for the one point whose image the
         # group's construction finds: the pin E (RRP, PRP) or the outer pin D (RPR, RPP);
@@ -150,22 +199,50 @@ def relations(motion: Motion) -> tuple[Relation, ...]:
 
 def _complex_relations(g: ComplexGroup) -> list[Relation]:
     """Class III: each rod's relative motion (its pin relative to its outer pair); the base
-    link's pins are built from the special points at each position (:func:`_special`).
-    Class IV: every link's relative velocities between its pairs, as vectors only — the
-    group's plan is not constructible with a ruler from known images alone."""
+    link's pins are built from one special point at each position (:func:`_special`).
+    Class IV: a link with an outer pair O gives each of its other pins X relative to O; a link
+    without one, its two pins, the one farther from the frame relative to the nearer one (so no
+    relation ends at a fixed point). Every relation is drawn like a group's pair (construction
+    line, n and τ components): the lines of the relations ending at one pin x form the group
+    ``IV(…):X`` (two lines through the known images, meeting at x)."""
     out = []
+    lines = {}
+    if g.base is not None:
+        for rod in g.rods:       # a rod's sliding line is one of the two that find its base point
+            if rod.form == "PR":
+                lines[rod.outer.prismatic] = f"{g.name}:{rod.inner.point}"
+            elif rod.form == "RP":   # the base link's point under the rod's outer pin
+                lines[rod.inner.prismatic] = f"{g.name}:{rod.outer.point}{g.base}"
     for pair in g.pairs:
         if pair.kind == "P":
             pr = pair.prismatic
-            out.append(Relation("slide", pr.slider, pr.label, "", group=g.name, other=pr.guide))
+            out.append(Relation("slide", pr.slider, pr.label, "", group=g.name, other=pr.guide,
+                                lines=lines.get(pr, "")))
     if g.base is not None:
         for rod in g.rods:
             if rod.form == "RR":
-                out.append(Relation("rigid", rod.link, rod.inner.point, rod.outer.point, group=g.name))
+                out.append(Relation("rigid", rod.link, rod.inner.point, rod.outer.point, group=g.name,
+                                    lines=f"{g.name}:{rod.inner.point}"))
         return out
+    outer = {p.a if p.a in g.links else p.b: p for p in g.outer}
+    pins = {link: [p.point for p in g.pairs if p.kind == "R" and link in (p.a, p.b)] for link in g.links}
+    # distance (in links) of a pin from the frame through the group's outer pairs: pins of a
+    # link pinned to the frame first, then those of the other outer links, then the rest
+    rank: dict[str, int] = {}
+    for link, o in sorted(outer.items(), key=lambda lo: FRAME not in (lo[1].a, lo[1].b)):
+        for x in pins[link]:
+            rank.setdefault(x, 0 if FRAME in (o.a, o.b) else 1)
     for link in g.links:
-        pins = [p.point for p in g.pairs if p.kind == "R" and link in (p.a, p.b)]
-        out += [Relation("rigid", link, x, pins[0], group=g.name, pair=False) for x in pins[1:]]
+        o = outer.get(link)
+        if o is not None and o.kind == "R":
+            out += [Relation("rigid", link, x, o.point, group=g.name, lines=f"{g.name}:{x}")
+                    for x in pins[link] if x != o.point]
+        else:
+            inner = [x for x in pins[link] if o is None or x != o.point]
+            if len(inner) < 2:
+                continue
+            y = min(inner, key=lambda x: rank.get(x, 2))
+            out += [Relation("rigid", link, x, y, group=g.name, lines=f"{g.name}:{x}") for x in inner if x != y]
     return out
 
 
@@ -176,6 +253,8 @@ def _label(motion: Motion, point: str, link: str) -> str:
 
 #: Marks a plan label that would otherwise repeat another (a point named P beside the pole p).
 PRIME = "′"
+#: Kinds of component ends (image keys) and their letters: normal ``n``, Coriolis ``k``.
+COMPONENT_ENDS = ("n", "k")
 
 
 class _Builder:
@@ -191,6 +270,7 @@ class _Builder:
         self.vectors: list[PlanVector] = []
         self.lines: list[ConstructionLine] = []
         self.extra: dict[str, np.ndarray] = {}   # constructed points (special points S1…): world position
+        self.optional: set[str] = set()          # relative vectors left out where an absolute one draws them
 
     def put(self, key: tuple, label: str, xy) -> tuple[float, float]:
         """Record an image (first one wins) under ``key``, printed as ``label``."""
@@ -206,16 +286,37 @@ class _Builder:
 
     def plan_points(self) -> tuple[tuple[PlanPoint, ...], dict[tuple, str]]:
         """The images with unique labels (a repeat gets primes, in the order drawn) and the
-        label each key got."""
+        label each key got. The pole and the images of points are labelled first; the ends of
+        components (keys ``n``, ``k``) then take a letter no image is printed with (n, else
+        n′, n″ …; k likewise), so a printed letter never names two things."""
         taken: set[str] = set()
         final: dict[tuple, str] = {}
+        ends = [k for k in self.points if k[0] in COMPONENT_ENDS]
         for key in self.points:
+            if key[0] not in COMPONENT_ENDS:
+                final[key] = self._unique(self.names[key], taken)
+        printed = {label.partition("_")[0] for label in final.values()}   # as drawn: letter, subscript
+        letters = {}
+        for kind in COMPONENT_ENDS:
+            letters[kind] = kind
+            while letters[kind] in printed:
+                letters[kind] += PRIME
+        for key in ends:
             label = self.names[key]
-            while label in taken:
-                label += PRIME
-            taken.add(label)
-            final[key] = label
+            final[key] = self._unique(letters[key[0]] + label[len(key[0]):], taken)
         return tuple(PlanPoint(final[k], xy) for k, xy in self.points.items()), final
+
+    @staticmethod
+    def _unique(label: str, taken: set[str]) -> str:
+        while label in taken:
+            label += PRIME
+        taken.add(label)
+        return label
+
+    def fixed(self, point: str, link: str) -> bool:
+        """True when ``link``'s point at ``point`` is a pair with the frame (its image is the pole)."""
+        links = self.motion.mechanism.links
+        return point not in self.extra and link != FRAME and point in links[FRAME].local and point in links[link].local
 
     def world(self, point: str) -> np.ndarray:
         if point in self.extra:
@@ -243,9 +344,31 @@ class _Builder:
             return self.points[key]
         return self.put(key, self.label(point, link).lower(), self.quantity(point, link) / self.mu)
 
-    def vector(self, quantity: str, tail, head, value: float, kind: str) -> None:
-        if np.hypot(head[0] - tail[0], head[1] - tail[1]) > MIN_DRAWN_MM:
-            self.vectors.append(PlanVector(quantity, tuple(tail), tuple(head), float(value), kind))
+    def vector(self, quantity: str, tail, head, value: float, kind: str, optional: bool = False) -> bool:
+        """Draw a vector (not when shorter than MIN_DRAWN_MM: returns whether it is drawn);
+        ``optional``: a relative vector left out if an absolute vector draws the same segment
+        (:meth:`finish`)."""
+        if np.hypot(head[0] - tail[0], head[1] - tail[1]) <= MIN_DRAWN_MM:
+            return False
+        self.vectors.append(PlanVector(quantity, tuple(tail), tuple(head), float(value), kind))
+        if optional:
+            self.optional.add(quantity)
+        return True
+
+    def finish(self) -> None:
+        """Each segment drawn once: an optional relative vector that an absolute vector draws
+        (y at the pole) is left out, and so is a relative vector into the pole (its point
+        momentarily at rest) that an absolute vector draws the other way."""
+        absolute = [v for v in self.vectors if v.kind == "absolute"]
+
+        def redundant(v: PlanVector) -> bool:
+            if v.kind != "relative":
+                return False
+            if v.quantity in self.optional and _at_pole(v.tail):
+                return any(_same(w.head, v.head) for w in absolute)
+            return _at_pole(v.head) and any(_same(w.head, v.tail) for w in absolute)
+
+        self.vectors = [v for v in self.vectors if not redundant(v)]
 
     def line(self, through, direction: np.ndarray, reach, quantity: str, group: str) -> None:
         """A construction line through ``through`` with ``direction``, covering points ``reach``."""
@@ -285,6 +408,8 @@ def _plan(motion: Motion, i: int, mu: float, kind: str) -> Plan:
             continue
         head = b.image(name, link)
         b.vector(f"{sym}:{name}", pole, head, float(np.linalg.norm(b.quantity(name, link))), "absolute")
+    _close_figures(b, sym)
+    b.finish()
     points, final = b.plan_points()
     similar = tuple((link, tuple(final[b.image_key(p, link)] for p in mech.links[link].points))
                     for link in mech.moving if len(mech.links[link].points) >= 3)
@@ -303,18 +428,60 @@ def _rigid(b: _Builder, rel: Relation, sym: str) -> None:
         if rel.group == "I" and sym == "v":
             return  # the crank tip's velocity relative to the fixed pivot is its absolute velocity
         value = float(np.linalg.norm(b.quantity(rel.x, link) - b.quantity(rel.y, link)))
-        b.vector(q, tail, head, value, "relative")
+        b.vector(q, tail, head, value, "relative", optional=not rel.pair)
         if rel.pair:
-            b.line(tail, J(r), [head], q, rel.group)
+            b.line(tail, J(r), [head], q, rel.line_group)
         return
     w, e = float(state.omega[b.i]), float(state.epsilon[b.i])
     normal = -w * w * r
     if rel.group == "I" and e == 0.0:
         return  # a crank turning uniformly: πa is the normal component itself
     n_xy = b.put(("n", xl, yl), f"n_{xl}{yl}", np.add(tail, normal / b.mu))
-    b.vector(f"{q}:n", tail, n_xy, float(np.linalg.norm(normal)), "normal")
-    b.vector(f"{q}:t", n_xy, head, abs(e) * float(np.linalg.norm(r)), "tangential")
-    b.line(n_xy, J(r), [head], f"{q}:t", rel.group)
+    both = b.vector(f"{q}:n", tail, n_xy, float(np.linalg.norm(normal)), "normal")
+    both &= b.vector(f"{q}:t", n_xy, head, abs(e) * float(np.linalg.norm(r)), "tangential")
+    b.line(n_xy, J(r), [head], f"{q}:t", rel.line_group)
+    # the whole relative acceleration a→b beside its components (the textbook's a_BA); left
+    # out where the absolute a:X draws that very segment (y at the pole), where one component
+    # is zero (the other is the whole), and never from a special point (no side of the link)
+    if both and rel.y not in b.extra:
+        b.vector(q, tail, head, float(np.linalg.norm(b.quantity(rel.x, link) - b.quantity(rel.y, link))), "relative",
+                 optional=True)
+
+
+def _at_pole(xy) -> bool:
+    return float(np.hypot(xy[0], xy[1])) <= MIN_DRAWN_MM
+
+
+def _same(p, q) -> bool:
+    return float(np.hypot(p[0] - q[0], p[1] - q[1])) <= MIN_DRAWN_MM
+
+
+def _close_figures(b: _Builder, sym: str) -> None:
+    """The sides still missing of every link's similar figure (three or more points): the
+    polygon of its images in the link's order, each side a relative vector ``v:Q/P`` (from
+    the earlier point, or from a fixed point: no side ends at the pole) unless a vector of
+    the plan already joins the two images."""
+    motion = b.motion
+    drawn = {v.quantity for v in b.vectors}
+
+    def joined(p, q) -> bool:
+        return any((_same(v.tail, p) and _same(v.head, q)) or (_same(v.tail, q) and _same(v.head, p))
+                   for v in b.vectors)
+
+    for link in motion.mechanism.moving:
+        pts = motion.mechanism.links[link].points
+        if len(pts) < 3:
+            continue
+        for k, y in enumerate(pts):
+            x = pts[(k + 1) % len(pts)]
+            if b.fixed(x, link) or (_at_pole(b.image(x, link)) and not _at_pole(b.image(y, link))):
+                x, y = y, x       # never a side into the pole
+            tail, head = b.image(y, link), b.image(x, link)
+            q = f"{sym}:{b.label(x, link)}/{b.label(y, link)}"
+            if q in drawn or joined(tail, head):
+                continue
+            b.vector(q, tail, head, float(np.linalg.norm(b.quantity(x, link) - b.quantity(y, link))), "relative")
+            drawn.add(q)
 
 
 def _solved_before(motion: Motion, link: str, group: str) -> bool:
@@ -332,7 +499,7 @@ def _slide(b: _Builder, rel: Relation, sym: str, pole) -> None:
     u = motion.links[guide].direction(pr.direction)[b.i]
     if FRAME in (slider, guide):
         moving = slider if guide == FRAME else guide
-        b.line(pole, u, [b.image(rel.x, moving)], f"{sym}:{_label(motion, rel.x, moving)}", rel.group)
+        b.line(pole, u, [b.image(rel.x, moving)], f"{sym}:{_label(motion, rel.x, moving)}", rel.line_group)
         return
     # the construction starts from the image already known: the guide's when it was solved
     # before the group (a slider of the group on a known turning guide), the slider's when it
@@ -349,7 +516,7 @@ def _slide(b: _Builder, rel: Relation, sym: str, pole) -> None:
     if sym == "v":
         value = float(np.linalg.norm(b.quantity(rel.x, moving) - b.quantity(rel.x, known)))
         b.vector(q, tail, head, value, "relative")
-        b.line(tail, u, [head], q, rel.group)
+        b.line(tail, u, [head], q, rel.line_group)
         return
     # a_moving = a_known + a^k + a^r with a^k = 2 ω_guide × (v_moving − v_known)
     v_rel = b.quantity_v(rel.x, moving) - b.quantity_v(rel.x, known)
@@ -358,57 +525,78 @@ def _slide(b: _Builder, rel: Relation, sym: str, pole) -> None:
     a_rel = b.quantity(rel.x, moving) - b.quantity(rel.x, known) - coriolis
     b.vector(f"{q}:cor", tail, k_xy, float(np.linalg.norm(coriolis)), "coriolis")
     b.vector(f"{q}:r", k_xy, head, float(np.linalg.norm(a_rel)), "sliding")
-    b.line(k_xy, u, [head], f"{q}:r", rel.group)
+    b.line(k_xy, u, [head], f"{q}:r", rel.line_group)
 
 
 def _special(b: _Builder, g: ComplexGroup, sym: str) -> None:
-    """A class III group through its special points: each of the two special points used
-    (S = meeting point of two rods' axes, a point of the base link) is found from the known
-    images of the rods' outer pairs along the two directions ⊥ the axes; the base link's
-    pins are then found from the two special points (two lines ⊥ S–pin meeting at the pin's
-    image)."""
+    """A class III group along one route, as with ruler and set square: the special point S
+    (meeting point of the axes of rods i and j, a point of the base link) from the known
+    images of the two rods' outer pairs along the two directions ⊥ the axes; the third rod's
+    pin k from s (⊥ S–k) and its rod's own line (drawn with the group's relations); then the
+    pins of rods i and j from k (⊥ k–pin), each with its rod's own line (its axis passes
+    through S, so s gives it no second direction). The route is the one whose line pairs are
+    the farthest from parallel (:func:`_route`); the base triangle is closed by
+    :func:`_close_figures`."""
     motion, i = b.motion, b.i
     mech = motion.mechanism
     states = {name: s.take(np.array([i])) for name, s in motion.links.items()}
     ax = special.axes(g, mech, states)
     pts = special.special_points(g, mech, states)
-    skip = int(special.pick(pts)[0])
-    used = [p for k, p in enumerate(pts) if k != skip]
-    name = {}
-    for p in used:   # S1, S2, S3 — primed if the scene has points of those names
-        name[p.name] = p.name + PRIME * next(k for k in count() if p.name + PRIME * k not in mech.sketch)
-        b.extra[name[p.name]] = p.position[0]
-    for p in used:
-        s_img = b.image(name[p.name], g.base)
-        for r in p.rods:
-            rod = ax[r].rod
-            pin = rod.inner.point if rod.form == "PR" else rod.outer.point
-            k_lab = b.label(pin, ax[r].known)
-            k_img = b.image(pin, ax[r].known)
-            e = ax[r].normal[0]
-            q = f"{sym}:{name[p.name]}/{k_lab}"
-            total = b.quantity(name[p.name], g.base) - b.quantity(pin, ax[r].known)
-            if sym == "v":
-                b.vector(q, k_img, s_img, float(np.linalg.norm(total)), "relative")
-                b.line(k_img, e, [s_img], q, f"{g.name}:{name[p.name]}")
-                continue
-            known = special.known_acceleration(ax[r], g, mech, states, states, p.position)[0]
-            c = known - b.quantity(pin, ax[r].known)      # normal (and Coriolis) components, known
-            n_xy = b.put(("n", name[p.name], k_lab), f"n_{name[p.name]}{k_lab}", np.add(k_img, c / b.mu))
-            b.vector(f"{q}:n", k_img, n_xy, float(np.linalg.norm(c)), "normal")
-            b.vector(f"{q}:t", n_xy, s_img, float(np.linalg.norm(total - c)), "tangential")
-            b.line(n_xy, e, [s_img], f"{q}:t", f"{g.name}:{name[p.name]}")
-    # pins of the two rods not common to both special points: from the special points; the
-    # common rod's pin is on the line through both, so it comes from the other two pins
-    common = (set(used[0].rods) & set(used[1].rods)).pop()
-    others = [ax[r].rod.inner.point for r in range(3) if r != common and ax[r].rod.inner.kind == "R"]
-    for pin in others:
-        for p in used:
-            _rigid(b, Relation("rigid", g.base, pin, name[p.name], group=f"{g.name}:{pin}"), sym)
-    last = ax[common].rod.inner
-    if last.kind == "R" and len(others) == 2:
-        for pin in others:
-            _rigid(b, Relation("rigid", g.base, last.point, pin, group=f"{g.name}:{last.point}"), sym)
+    p = pts[_route(ax, pts)]
+    # S1, S2, S3 — primed if the scene has points of those names
+    s_name = p.name + PRIME * next(k for k in count() if p.name + PRIME * k not in mech.sketch)
+    b.extra[s_name] = p.position[0]
+    s_img = b.image(s_name, g.base)
+    for r in p.rods:
+        rod = ax[r].rod
+        pin = rod.inner.point if rod.form == "PR" else rod.outer.point
+        k_lab = b.label(pin, ax[r].known)
+        k_img = b.image(pin, ax[r].known)
+        e = ax[r].normal[0]
+        q = f"{sym}:{s_name}/{k_lab}"
+        total = b.quantity(s_name, g.base) - b.quantity(pin, ax[r].known)
+        if sym == "v":
+            b.vector(q, k_img, s_img, float(np.linalg.norm(total)), "relative")
+            b.line(k_img, e, [s_img], q, f"{g.name}:{s_name}")
+            continue
+        known = special.known_acceleration(ax[r], g, mech, states, states, p.position)[0]
+        c = known - b.quantity(pin, ax[r].known)      # normal (and Coriolis) components, known
+        n_xy = b.put(("n", s_name, k_lab), f"n_{s_name}{k_lab}", np.add(k_img, c / b.mu))
+        b.vector(f"{q}:n", k_img, n_xy, float(np.linalg.norm(c)), "normal")
+        b.vector(f"{q}:t", n_xy, s_img, float(np.linalg.norm(total - c)), "tangential")
+        b.line(n_xy, e, [s_img], f"{q}:t", f"{g.name}:{s_name}")
+    third = next(r for r in range(3) if r not in p.rods)
+    pins = [_base_point(x) for x in ax]
+    _rigid(b, Relation("rigid", g.base, pins[third], s_name, group=g.name,
+                       lines=f"{g.name}:{b.label(pins[third], g.base)}"), sym)
+    for r in p.rods:
+        _rigid(b, Relation("rigid", g.base, pins[r], pins[third], group=g.name,
+                           lines=f"{g.name}:{b.label(pins[r], g.base)}"), sym)
+
+
+def _base_point(ax: special.Axis) -> str:
+    """The base link's point on a rod's axis whose image the rod's own line finds: the inner
+    pin (R–R, P–R), or the point of the base under the outer pin (R–P)."""
+    rod = ax.rod
+    return rod.inner.point if rod.inner.kind == "R" else rod.outer.point
+
+
+def _route(ax: tuple[special.Axis, ...], pts: tuple[special.SpecialPoint, ...]) -> int:
+    """Index of the special point to draw from: each route meets four pairs of lines (s; the
+    third pin from s; the two other pins from it), the route whose worst pair is the farthest
+    from parallel (largest smallest |sin|) is drawn."""
+    def sin(u: np.ndarray, d: np.ndarray) -> float:   # |sin| between a segment u and a unit direction d
+        n = float(np.linalg.norm(u))
+        return abs(float(u[0] * d[1] - u[1] * d[0])) / n if n > 0.0 else 0.0
+
+    scores = []
+    for p in pts:
+        i, j = p.rods
+        k = next(r for r in range(3) if r not in p.rods)
+        s, pk = p.position[0], ax[k].pin[0]
+        scores.append(min(abs(float(p.sin[0])), sin(pk - s, ax[k].direction[0]),
+                          sin(ax[i].pin[0] - pk, ax[i].direction[0]), sin(ax[j].pin[0] - pk, ax[j].direction[0])))
+    return int(np.argmax(scores))
 
 
 #: Length of the arbitrary first vector of Koshel's uncertain-scale plan, mm.
