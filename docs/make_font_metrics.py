@@ -11,7 +11,7 @@ from pathlib import Path
 
 from fontTools.ttLib import TTFont
 
-CHARS = "".join(chr(c) for c in range(32, 127)) + "αβγδεζηθλμνξπρστφχψωΔΣΦΩ≡′″²³·×⊥∞–—°→∥≈≤≥±−…∠∑ΠΛµ"
+CHARS = "".join(chr(c) for c in range(32, 127)) + "\u00a0αβγδεζηθλμνξπρστφχψωΔΣΦΩ≡′″²³·×⊥∞–—°→∥≈≤≥±−…∠∑ΠΛµ"
 
 
 def table(path: Path) -> tuple[int, int, int, dict[str, int]]:

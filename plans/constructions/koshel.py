@@ -287,12 +287,12 @@ def _steps(motion, i, g, plan, segment, mu, pname, known, moving, drawn, resting
         (c, _, _, wc), (d, _, _, wd) = known[:2]
         s1 = f"1) {P}, the centre of the base link {base}: {wc} and {wd} (the rods turn about, or slide on, the " \
              f"frame), so {P} is where the line through {c} ⊥ v_{{{c}}} meets the line through {d} ⊥ v_{{{d}}} " \
-             "(Fig. 1, variant 1)"
+             "(Fig.\u00a01, variant 1)"
         if resting:
             s1 += f"; it is the special point {_sub(resting[0])} of the group"
         if len(moving) >= 2:
             (a, _, _), (b, _, _) = moving[:2]
-            s1 += f". Variant 2 (Fig. 2): {_sub(a)}, {_sub(b)} (where the rods' axes meet) get V_{{{a}}}, V_{{{b}}} " \
+            s1 += f". Variant\u00a02 (Fig.\u00a02): {_sub(a)}, {_sub(b)} (where the rods' axes meet) get V_{{{a}}}, V_{{{b}}} " \
                   f"from two known directions each, drawn from {_sub(a)}, {_sub(b)} in K_{{V}}; the lines through them " \
                   f"⊥ V_{{{a}}}, ⊥ V_{{{b}}} meet at {P} too"
     else:
@@ -300,7 +300,7 @@ def _steps(motion, i, g, plan, segment, mu, pname, known, moving, drawn, resting
         s1 = f"1) {P}, the centre of the base link {base}: the special points {', '.join(map(_sub, names))} " \
              f"(where the rods' axes meet) get their velocities from two known directions each, drawn from them in " \
              f"K_{{V}}; {P} is where the lines through them ⊥ V_{{{names[0]}}}, ⊥ V_{{{names[1]}}} meet " \
-             "(Fig. 2, variant 2)"
+             "(Fig.\u00a02, variant 2)"
     off = [n for n, _, _ in moving if n not in {m for m, _, _ in drawn}]
     if off:
         s1 += f" ({', '.join(map(_sub, off))} {'lies' if len(off) == 1 else 'lie'} off the sheet here, so " \
