@@ -47,7 +47,8 @@ A3_MM = (297.0, 420.0)
 SIZE_TOLERANCE_MM = 0.05
 #: Standard formats recognised by size (either orientation).
 FORMATS = {"A4": (210.0, 297.0), "A3": (297.0, 420.0)}
-#: A tagged vector shorter than this must have no arrowhead, mm.
+#: A tagged vector shorter than this must have no arrowhead, mm (the writer's promise,
+#: plans.drawing.marks.NO_HEAD_MM, restated here so the measurer does not read the writer).
 NO_HEAD_MM = 2.0
 #: Rounding allowance of written coordinates when comparing lengths, mm.
 ROUNDING_MM = 2e-3
@@ -655,19 +656,12 @@ def measure_layout(svg_text: str | bytes) -> LayoutReport:
     unmatched: list[str] = []
     n_heads = 0
     with_head: set[str] = set()
-    line_ends = [(ident, a, b) for ident, (a, b, _) in reader.lines.items()]
     for ident, target, pts in reader.heads:
         corners = list(dict.fromkeys(pts))
         if len(corners) != 3:
             unmatched.append(f"head {ident}: not a triangle")
             continue
         vec = reader.lines.get(target)
-        if vec is None and target not in reader.paths:
-            # no line or path of that id: a line ending at one of the head's corners is its vector
-            for lid, a, b in line_ends:
-                if any(math.dist(b, p) <= ROUNDING_MM for p in corners):
-                    target, vec = lid, reader.lines[lid]
-                    break
         if vec is not None:
             a, b, _ = vec
             tip = min(corners, key=lambda p: math.dist(p, b))

@@ -228,6 +228,12 @@ def test_gallery_layout(gallery, count):
     assert all(r.counts[count] == 0 for r in gallery.values()), report_of(gallery, count)
 
 
+def test_every_gallery_head_names_its_vector(gallery):
+    """Each arrowhead's data-for names the line or arc it ends (so its length is measured)."""
+    lost = {name: r.unmatched_heads for name, r in gallery.items() if r.unmatched_heads}
+    assert not lost, lost
+
+
 #: Random atlas mechanisms: how many, drawn how (deterministic), at how many positions each.
 ATLAS_SCENES = 100
 ATLAS_SEED = 20240611

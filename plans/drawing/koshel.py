@@ -16,14 +16,13 @@ import math
 import numpy as np
 
 from ..constructions.koshel import KoshelSheet
-from ..constructions.plans import Plan
 from .canvas import Canvas, fmt
-from .marks import NO_HEAD_MM, arrow as _arrow, markup as _markup
+from .marks import arrow as _arrow, bounds, markup as _markup, vector as _vector
 from .scheme import scheme_layers
 from .sheet import FORMATS, TitleBlock, new_sheet
 from .style import Style
-from .svg import COINCIDE_MM, LABEL_ROOM_MM, Heading, _image_label, _preferred, _tag
-from .text import runs, width
+from .svg import COINCIDE_MM as _COINCIDE_MM, Heading, _tag, plan_layers
+from .text import wrap
 
 __all__ = ["draw_koshel", "PLAN_PANEL_MM", "STEP_TEXT_MM"]
 
@@ -36,69 +35,10 @@ STEP_LEAD_MM = 4.4
 CAPTION_MM = 7.0
 
 
-def _wrap(text: str, room: float, size: float) -> list[str]:
-    rows, row = [], ""
-    for word in text.split(" "):
-        trial = f"{row} {word}" if row else word
-        if row and width(runs(trial), size, False) > room:
-            rows.append(row)
-            trial = "   " + word
-        row = trial
-    rows.append(row)
-    return rows
-
-
-def _content(points) -> tuple[float, float, float, float]:
-    arr = np.array(list(points), dtype=float).reshape(-1, 2)
-    (x0, y0), (x1, y1) = arr.min(axis=0), arr.max(axis=0)
-    r = LABEL_ROOM_MM
-    return float(x0) - r, float(y0) - r, float(x1) + r, float(y1) + r
-
-
 def _place(canvas: Canvas, content, box) -> None:
     """Move the canvas so that ``content`` (mm, y up) is centred in paper ``box`` (x0, y0, x1, y1)."""
     canvas.dx = (box[0] + box[2]) / 2 - (content[0] + content[2]) / 2
     canvas.dy = (box[1] + box[3]) / 2 + (content[1] + content[3]) / 2
-
-
-def _draw_plan(dwg, canvas: Canvas, plan: Plan, ident: str, style: Style) -> None:
-    """The plan's group as :func:`plans.drawing.svg.draw_plan` draws it."""
-    g = dwg.g(id=f"{ident}-plan")
-    g.attribs["data-mu"] = repr(plan.mu)
-    g.attribs["data-plan"] = plan.kind
-    g.attribs["data-vectors"] = str(len(plan.vectors))
-    lines = dwg.g(id=f"{ident}-construction", stroke=style.construction_colour, stroke_width=fmt(style.thin, 3),
-                  stroke_dasharray=style.dash, fill="none")
-    for k, l in enumerate(plan.lines):
-        el = canvas.line(lines, l.start, l.end, id=f"{ident}-cl{k}")
-        el.attribs["data-construction"] = l.quantity
-    g.add(lines)
-    for k, v in enumerate(plan.vectors):
-        colour = style.vector_colour
-        head_len = min(style.arrow_length, 0.5 * v.length) if v.length >= NO_HEAD_MM else 0.0
-        shaft = max(v.length - head_len * 0.8, 0.0)
-        el = canvas.line(g, v.tail, v.head, width=style.vector, id=f"{ident}-v{k}", stroke=colour,
-                         stroke_width=fmt(style.vector, 3), stroke_dasharray=f"{fmt(shaft, 3)} {fmt(v.length + 1, 3)}")
-        _tag(el, canvas, v.quantity, v.value, v.tail, v.head, _image_label(plan, v.tail), _image_label(plan, v.head))
-        _arrow(canvas, g, v.tail, v.head, colour, f"{ident}-h{k}", style)
-    labels = dwg.g(id=f"{ident}-labels", fill=style.colour)
-    segments = [(v.tail, v.head) for v in plan.vectors] + [(l.start, l.end) for l in plan.lines]
-    centre = np.mean([p.xy for p in plan.points], axis=0)
-    groups: list[list] = []
-    for p in plan.points:
-        same = next((grp for grp in groups if math.dist(grp[0].xy, p.xy) < COINCIDE_MM), None)
-        if same is None:
-            groups.append([p])
-        else:
-            same.append(p)
-    for k, grp in enumerate(groups):
-        xy = grp[0].xy
-        canvas.circle(labels, xy, 0.45, filled=True, id=f"{ident}-d{k}")
-        text = " ≡ ".join(_markup(p.label) for p in grp)
-        canvas.label(labels, xy, text, size=style.text, prefer=_preferred(xy, segments, centre), ident=f"{ident}-l{k}",
-                     digits=False, near=0.5)
-    g.add(labels)
-    dwg.add(g)
 
 
 def _scheme_side(dwg, canvas: Canvas, sheet: KoshelSheet, ident: str, style: Style) -> None:
@@ -126,13 +66,8 @@ def _scheme_side(dwg, canvas: Canvas, sheet: KoshelSheet, ident: str, style: Sty
     vs.attribs["data-vectors"] = str(len(sheet.vectors))
     marks = dwg.g(id=f"{ident}-marks", fill=red)
     for k, v in enumerate(sheet.vectors):
-        L = math.dist(v.tail, v.head)
-        head_len = min(style.arrow_length, 0.5 * L) if L >= NO_HEAD_MM else 0.0
-        el = canvas.line(vs, v.tail, v.head, width=style.vector, id=f"{ident}-sv{k}", stroke=style.vector_colour,
-                         stroke_width=fmt(style.vector, 3),
-                         stroke_dasharray=f"{fmt(max(L - head_len * 0.8, 0.0), 3)} {fmt(L + 1, 3)}")
+        el = _vector(canvas, vs, v.tail, v.head, style.vector_colour, f"{ident}-sv{k}", f"{ident}-sh{k}", style)
         _tag(el, canvas, f"v:{v.name}", v.value, v.tail, v.head, v.name, v.name.lower())
-        _arrow(canvas, vs, v.tail, v.head, style.vector_colour, f"{ident}-sh{k}", style)
         canvas.label(marks, v.head, f"V_{{{v.name}}}", size=style.text, prefer=np.subtract(v.head, v.tail),
                      ident=f"{ident}-svl{k}", digits=False, near=0.6, fill=style.vector_colour)
     dwg.add(vs)
@@ -144,11 +79,11 @@ def _scheme_side(dwg, canvas: Canvas, sheet: KoshelSheet, ident: str, style: Sty
     else:
         tip = tuple(np.add(c.anchor, np.multiply(c.direction, 18.0)))
         canvas.line(marks, c.anchor, tip, stroke=red, stroke_width=fmt(style.thin, 3), id=f"{ident}-pd")
-        _arrow(canvas, marks, c.anchor, tip, red, f"{ident}-pdh", style)
+        _arrow(canvas, marks, c.anchor, tip, red, f"{ident}-pdh", style, of=f"{ident}-pd")
         canvas.label(marks, tip, f"{_markup(c.name)} (off the sheet)", size=style.small_text, prefer=c.direction,
                      ident=f"{ident}-pdt", digits=False, fill=red)
     for k, (name, xy) in enumerate(sheet.specials):
-        if c.xy is not None and math.dist(xy, c.xy) < COINCIDE_MM:
+        if c.xy is not None and math.dist(xy, c.xy) < _COINCIDE_MM:
             continue                 # the special point at rest is P_j itself (its label says so below)
         canvas.circle(marks, xy, 0.7, fill="#fff", stroke=red, stroke_width=fmt(style.thin, 3), id=f"{ident}-sp{k}")
         canvas.label(marks, xy, _markup(name), size=style.small_text, prefer=(1.0, -1.0), ident=f"{ident}-spt{k}",
@@ -164,14 +99,14 @@ def draw_koshel(sheet: KoshelSheet, heading: Heading, *, ident: str, style: Styl
     left_pts = list(sch.points.values()) + [g.start for g in sch.guides] + [g.end for g in sch.guides] \
         + [p for l in sheet.lines for p in (l.start, l.end)] + [v.head for v in sheet.vectors] \
         + [xy for _, xy in sheet.specials] + ([sheet.centre.xy] if sheet.centre.xy is not None else [])
-    left = _content(left_pts)
+    left = bounds(left_pts)
     plan = sheet.plan
-    right = _content([p.xy for p in plan.points] + [l.start for l in plan.lines] + [l.end for l in plan.lines])
+    right = bounds([p.xy for p in plan.points] + [l.start for l in plan.lines] + [l.end for l in plan.lines])
     dwg, canvas = new_sheet(fmt_, left, ident=ident, style=style,
                             block=TitleBlock(heading.mechanism, heading.sheet, heading.position, scales))
     a = canvas.area
     room = a.x1 - a.x0 - 16.0     # the viewer's serif may run wider than DejaVu's metrics
-    rows = [r for step in sheet.steps for r in _wrap(step, room, STEP_TEXT_MM)]
+    rows = [r for step in sheet.steps for r in wrap(step, room, STEP_TEXT_MM, indent="   ")]
     text_top = a.y1 - 2.0 - STEP_LEAD_MM * len(rows)
     split = a.x1 - PLAN_PANEL_MM
     top = a.y0 + CAPTION_MM
@@ -183,7 +118,7 @@ def draw_koshel(sheet: KoshelSheet, heading: Heading, *, ident: str, style: Styl
     _place(canvas, left, (a.x0, top, split, text_top - 2.0))
     _scheme_side(dwg, canvas, sheet, ident, style)
     _place(canvas, right, (split, top, a.x1, text_top - 2.0))
-    _draw_plan(dwg, canvas, plan, ident, style)
+    plan_layers(dwg, canvas, plan, ident, style)
     sep = dwg.g(id=f"{ident}-steps-rule", stroke=style.colour, stroke_width=fmt(style.thin, 3))
     y = canvas.dy - (text_top - 2.0)        # the rule above the steps, in the canvas's content mm
     canvas.line(sep, (a.x0 - canvas.dx, y), (a.x1 - canvas.dx, y), id=f"{ident}-rule")

@@ -16,7 +16,7 @@ import svgwrite
 
 from .canvas import Canvas, fmt
 from .style import Style
-from .text import Box, plain, runs, width
+from .text import Box, plain, runs, width, wrap
 
 __all__ = ["Format", "FORMATS", "choose_format", "TitleBlock", "new_sheet", "FRAME_MM", "TITLE_BLOCK_MM",
            "LARGEST"]
@@ -156,16 +156,7 @@ def note_lines(canvas: Canvas, parent, lines: Sequence[str], style: Style) -> No
     rule gave way), each wrapped at word boundaries to the area's width."""
     a = canvas.area
     room = a.x1 - a.x0 - 6.0
-    rows: list[str] = []
-    for line in lines:
-        row = ""
-        for word in line.split(" "):
-            trial = f"{row} {word}" if row else word
-            if row and width(runs(trial), style.small_text, False) > room:
-                rows.append(row)
-                trial = word
-            row = trial
-        rows.append(row)
+    rows = [row for line in lines for row in wrap(line, room, style.small_text)]
     y = a.y1 - 2.0 - 4.0 * (len(rows) - 1)
     for k, row in enumerate(rows):
         canvas.text(parent, (a.x0 + 3.0, y + 4.0 * k), row, size=style.small_text)

@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Iterable, Sequence
+from typing import Sequence
 
 import numpy as np
 
@@ -36,15 +36,13 @@ from ..constructions.centres import CentresSheet
 from ..constructions.plans import Plan
 from ..constructions.scheme import Scheme
 from .canvas import Canvas, fmt
-from .marks import NO_HEAD_MM, arrow as _arrow, markup as _markup
+from .marks import arrow as _arrow, bounds, markup as _markup, vector as _vector
 from .scheme import scheme_layers
 from .sheet import FORMATS, TitleBlock, choose_format, new_sheet, note_lines
 from .style import Style
 
-__all__ = ["Heading", "draw_plan", "draw_scheme", "draw_centres", "fmt", "LABEL_ROOM_MM", "NO_HEAD_MM"]
+__all__ = ["Heading", "draw_plan", "draw_scheme", "draw_centres", "plan_layers", "fmt"]
 
-#: Room kept around the drawing's geometry for its labels, mm.
-LABEL_ROOM_MM = 10.0
 #: Images closer than this share one label ("p ≡ b"), mm.
 COINCIDE_MM = 0.3
 #: Two plan images closer than this (mm) are one point for ``data-from``/``data-to``; the
@@ -86,14 +84,6 @@ def _tag(el, canvas: Canvas, quantity: str, value: float, tail, head, start: str
         el.attribs["data-to"] = end
 
 
-def _bounds(points: Iterable[Sequence[float]]) -> tuple[float, float, float, float]:
-    """The content box of ``points`` (mm, y up) with LABEL_ROOM_MM all round."""
-    arr = np.array(list(points), dtype=float).reshape(-1, 2)
-    (x0, y0), (x1, y1) = arr.min(axis=0), arr.max(axis=0)
-    r = LABEL_ROOM_MM
-    return float(x0) - r, float(y0) - r, float(x1) + r, float(y1) + r
-
-
 def _sheet(bounds, heading: Heading, scales: str, ident: str, style: Style):
     """The smallest standard sheet holding ``bounds`` (A3 landscape when none does: the
     scales are chosen so that it never happens, see constructions.scales)."""
@@ -128,7 +118,17 @@ def draw_plan(plan: Plan, heading: Heading, *, ident: str, style: Style = Style(
     unit = {"velocity": "(m/s)/mm", "acceleration": "(m/s²)/mm"}[plan.kind]
     scale = f"{sym} = {plan.mu:g} {unit}; vector = drawn length × {sym}" if plan.vectors else \
         f"pole {plan.pole} alone: no vector to draw, no scale {sym}"
-    dwg, canvas = _sheet(_bounds(coords), heading, scale, ident, style)
+    dwg, canvas = _sheet(bounds(coords), heading, scale, ident, style)
+    plan_layers(dwg, canvas, plan, ident, style)
+    if notes:
+        note_lines(canvas, dwg.add(dwg.g(id=f"{ident}-notes")), notes, style)
+    canvas.place_labels(dwg.add(dwg.g(id=f"{ident}-leaders")))   # outside the plan: not vectors
+    return dwg.tostring()
+
+
+def plan_layers(dwg, canvas: Canvas, plan: Plan, ident: str, style: Style) -> None:
+    """A plan's group on ``canvas``: construction lines, tagged vectors with their heads, the
+    images' dots, and label requests (placed by the caller's ``canvas.place_labels``)."""
     g = dwg.g(id=f"{ident}-plan")
     g.attribs["data-mu"] = repr(plan.mu)
     g.attribs["data-plan"] = plan.kind
@@ -141,12 +141,8 @@ def draw_plan(plan: Plan, heading: Heading, *, ident: str, style: Style = Style(
     g.add(lines)
     for k, v in enumerate(plan.vectors):
         colour = style.vector_colour if v.kind in ("absolute", "relative") else style.component_colour
-        head_len = min(style.arrow_length, 0.5 * v.length) if v.length >= NO_HEAD_MM else 0.0
-        shaft = max(v.length - head_len * 0.8, 0.0)
-        el = canvas.line(g, v.tail, v.head, width=style.vector, id=f"{ident}-v{k}", stroke=colour,
-                         stroke_width=fmt(style.vector, 3), stroke_dasharray=f"{fmt(shaft, 3)} {fmt(v.length + 1, 3)}")
+        el = _vector(canvas, g, v.tail, v.head, colour, f"{ident}-v{k}", f"{ident}-h{k}", style)
         _tag(el, canvas, v.quantity, v.value, v.tail, v.head, _image_label(plan, v.tail), _image_label(plan, v.head))
-        _arrow(canvas, g, v.tail, v.head, colour, f"{ident}-h{k}", style)
     labels = dwg.g(id=f"{ident}-labels", fill=style.colour)
     segments = [(v.tail, v.head) for v in plan.vectors] + [(l.start, l.end) for l in plan.lines]
     centre = np.mean([p.xy for p in plan.points], axis=0)
@@ -165,10 +161,6 @@ def draw_plan(plan: Plan, heading: Heading, *, ident: str, style: Style = Style(
                      digits=False, near=0.5)
     g.add(labels)
     dwg.add(g)
-    if notes:
-        note_lines(canvas, dwg.add(dwg.g(id=f"{ident}-notes")), notes, style)
-    canvas.place_labels(dwg.add(dwg.g(id=f"{ident}-leaders")))   # outside the plan: not vectors
-    return dwg.tostring()
 
 
 def _scheme_coords(sch: Scheme) -> list:
@@ -177,7 +169,7 @@ def _scheme_coords(sch: Scheme) -> list:
 
 def draw_scheme(sch: Scheme, heading: Heading, *, formula: str, ident: str, style: Style = Style()) -> str:
     """SVG text of the kinematic scheme."""
-    dwg, canvas = _sheet(_bounds(_scheme_coords(sch)), heading, f"μ_l = {sch.mu_l:g} m/mm;  {formula}", ident, style)
+    dwg, canvas = _sheet(bounds(_scheme_coords(sch)), heading, f"μ_l = {sch.mu_l:g} m/mm;  {formula}", ident, style)
     scheme_layers(dwg, canvas, sch, ident, style)
     canvas.place_labels(dwg.add(dwg.g(id=f"{ident}-leaders")))
     return dwg.tostring()
@@ -190,7 +182,7 @@ def draw_centres(sheet: CentresSheet, heading: Heading, *, formula: str, ident: 
     tips = [tuple(np.add(m.anchor, np.multiply(m.direction, 18.0))) for m in sheet.marks if m.xy is None]
     coords = _scheme_coords(sheet.scheme) + marks + tips + [xy for _, xy in sheet.special] + \
         [p for line in sheet.lines for p in line]
-    dwg, canvas = _sheet(_bounds(coords), heading, f"μ_l = {sheet.mu_l:g} m/mm; P_j: centre of link j, "
+    dwg, canvas = _sheet(bounds(coords), heading, f"μ_l = {sheet.mu_l:g} m/mm; P_j: centre of link j, "
                          f"P_j–X ⊥ v_X;  {formula}", ident, style)
     cons = dwg.g(id=f"{ident}-construction", stroke=style.construction_colour, stroke_width=fmt(style.thin, 3),
                  stroke_dasharray=style.dash, fill="none")
@@ -218,7 +210,7 @@ def draw_centres(sheet: CentresSheet, heading: Heading, *, formula: str, ident: 
         tip = tuple(np.add(m.anchor, np.multiply(m.direction, 18.0)))
         canvas.line(labels, m.anchor, tip, stroke=style.component_colour, stroke_width=fmt(style.thin, 3),
                     id=f"{ident}-cd{k}")
-        _arrow(canvas, labels, m.anchor, tip, style.component_colour, f"{ident}-ch{k}", style)
+        _arrow(canvas, labels, m.anchor, tip, style.component_colour, f"{ident}-ch{k}", style, of=f"{ident}-cd{k}")
         note = f"{_markup(m.name)} at ∞" if m.infinite else f"{_markup(m.name)} (off the sheet)"
         canvas.label(labels, tip, note, size=style.small_text, prefer=m.direction, ident=f"{ident}-ct{k}",
                      digits=False, fill=style.component_colour)

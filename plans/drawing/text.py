@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 from .font_metrics import BOOK, ITALIC
 
-__all__ = ["Run", "runs", "plain", "width", "Box", "box", "ASCENT", "DESCENT", "SUB_SIZE", "SUB_SHIFT", "FONT"]
+__all__ = ["Run", "runs", "plain", "wrap", "width", "Box", "box", "ASCENT", "DESCENT", "SUB_SIZE", "SUB_SHIFT", "FONT"]
 
 #: The family every sheet names (the metrics below are its own).
 FONT = "DejaVu Serif"
@@ -101,3 +101,18 @@ def box(parts: tuple[Run, ...], size: float, italic: bool, x: float, y: float, a
     if any(r.sub for r in parts):
         low = max(low, SUB_SHIFT * size + DESCENT * SUB_SIZE * size)
     return Box(left, y - ASCENT * size, left + w, y + low)
+
+
+def wrap(text: str, room: float, size: float, *, indent: str = "") -> list[str]:
+    """``text`` broken at spaces into rows at most ``room`` mm wide at height ``size`` (a
+    single word wider than the room keeps a row of its own); rows after the first start
+    with ``indent``."""
+    rows, row = [], ""
+    for word in text.split(" "):
+        trial = f"{row} {word}" if row else word
+        if row and width(runs(trial), size, False) > room:
+            rows.append(row)
+            trial = indent + word
+        row = trial
+    rows.append(row)
+    return rows
