@@ -41,10 +41,12 @@ class Rendered:
 
 
 def solve_scene(scene: Scene) -> Motion:
-    """Solve a scene to the order its drawings need (scheme only: positions)."""
+    """Solve a scene to the order its drawings need (scheme only: positions; the senses of
+    ω and ε on the scheme: accelerations)."""
     mech = build_mechanism(scene)
     structure = analyse_structure(mech)
-    order = 2 if "acceleration" in scene.draw else 1 if {"velocity", "centres"} & set(scene.draw) else 0
+    order = 2 if "acceleration" in scene.draw or scene.senses else 1 if {"velocity", "centres"} & set(scene.draw) \
+        else 0
     return analyse(mech, structure, order=order)
 
 
@@ -280,7 +282,7 @@ def render_scene(path: str | Path, style: Style = Style()) -> Rendered:
                 warnings.append(f"{stem}: group {g} is near a singular position at {motion.values[i]:g}{unit} "
                                 f"(condition {s[i]:.2e}{where}); values are exact but sensitive")
         if "scheme" in scene.draw:
-            sch = scheme(motion, i, scales.mu_l)
+            sch = scheme(motion, i, scales.mu_l, senses=scene.senses)
             files[f"{stem}-scheme{sfx}.svg"] = draw_scheme(sch, Heading(scene.title, "Kinematic scheme", label),
                                                            formula=formula, ident=f"scheme{sfx or ''}", style=style)
         if "centres" in scene.draw:

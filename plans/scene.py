@@ -130,6 +130,7 @@ class Scene:
     lengths: Mapping[frozenset[str], float] = field(default_factory=dict)
     draw: tuple[str, ...] = DEFAULT_DRAW
     scales: Mapping[str, float] = field(default_factory=dict)
+    senses: bool = False          # the scheme shows the senses of ω and ε of every moving link
     description: str = ""
     file: str | None = None
 
@@ -264,10 +265,10 @@ def _parse(data: Mapping[str, Any], file: str | None) -> Scene:
     sliders = _sliders(data.get("sliders", []), points, links)
     drive = _drive(_table(data, "drive", required=True), links, sliders, points)
     lengths = _lengths(_table(data, "lengths"), points, links)
-    draw = _draw(_table(data, "plans"))
+    draw, senses = _draw(_table(data, "plans"))
     scales = _scales(_table(data, "scales"))
     return Scene(title=title or "Mechanism", points=points, links=links, sliders=sliders, drive=drive,
-                 lengths=lengths, draw=draw, scales=scales, description=description, file=file)
+                 lengths=lengths, draw=draw, senses=senses, scales=scales, description=description, file=file)
 
 
 # --- helpers -----------------------------------------------------------------------------
@@ -551,17 +552,24 @@ def _lengths(table: Mapping[str, Any], points: Mapping[str, Any],
     return lengths
 
 
-def _draw(table: Mapping[str, Any]) -> tuple[str, ...]:
-    extra = sorted(str(k) for k in set(table) - {"draw"})
+def _draw(table: Mapping[str, Any]) -> tuple[tuple[str, ...], bool]:
+    """What to draw, and whether the scheme shows the senses of ω and ε (``senses``)."""
+    extra = sorted(str(k) for k in set(table) - {"draw", "senses"})
     if extra:
-        raise SceneError(f"unknown key {extra[0]!r}; [plans] has draw", key=f"plans.{extra[0]}")
+        raise SceneError(f"unknown key {extra[0]!r}; [plans] has draw and senses", key=f"plans.{extra[0]}")
     draw = table.get("draw", list(DEFAULT_DRAW))
     if not isinstance(draw, list) or not draw:
         raise SceneError(f"draw is a non-empty list of {', '.join(DRAWABLE)}", key="plans.draw")
     for item in draw:
         if not isinstance(item, str) or item not in DRAWABLE:
             raise SceneError(f"cannot draw {_SHOW.repr(item)}; choose from {', '.join(DRAWABLE)}", key="plans.draw")
-    return tuple(d for d in DRAWABLE if d in draw)
+    senses = table.get("senses", False)
+    if not isinstance(senses, bool):
+        raise SceneError(f"senses is true or false, not {_SHOW.repr(senses)}", key="plans.senses")
+    if senses and "scheme" not in draw:
+        raise SceneError("senses = true marks ω and ε on the scheme, which is not drawn; add \"scheme\" to draw",
+                         key="plans.senses")
+    return tuple(d for d in DRAWABLE if d in draw), senses
 
 
 def _scales(table: Mapping[str, Any]) -> dict[str, float]:

@@ -21,7 +21,7 @@ from plans.drawing.text import box, runs
 from plans.render import _scales, solve_scene
 from plans.scene import read_scene
 
-from conftest import EXAMPLES
+from conftest import EXAMPLES, toml_text
 
 STYLE = Style()
 EX = {p.stem: p for p in EXAMPLES}
@@ -321,6 +321,44 @@ def test_senses_need_velocities():
     motion = analyse(mech, analyse_structure(mech), order=1)
     sch = scheme(motion, 2, 0.0025, senses=True)
     assert {a.kind for a in sch.arcs if a.link != "1"} == {"omega"}   # no ε_j without accelerations
+
+
+@pytest.mark.parametrize("senses, arcs", [(True, {"omega2", "omega3", "epsilon2", "epsilon3"}), (False, set())])
+def test_senses_key_in_the_scene(tmp_path, senses, arcs):
+    """[plans] senses = true marks ω_j and ε_j of the four-bar's coupler and rocker on the
+    scheme, from a scene that draws the scheme alone (so accelerations are computed for it)."""
+    from plans.cli import main
+
+    scene = _four_bar_with(tmp_path, {"draw": ["scheme"], "senses": senses})
+    assert main(["render", str(scene), "-o", str(tmp_path / "o"), "-q"]) == 0
+    sheet = sorted((tmp_path / "o").glob("fb-scheme*.svg"))[0].read_text(encoding="utf-8")
+    found = set(re.findall(r'id="scheme-[^"]*?-((?:omega|epsilon)[2-9])"', sheet))
+    assert found == arcs
+
+
+def _four_bar_with(tmp_path, plans: dict):
+    """The four-bar scene with its [plans] table replaced."""
+    import tomllib
+
+    data = tomllib.loads(EX["four_bar"].read_text(encoding="utf-8"))
+    data["plans"] = plans
+    scene = tmp_path / "fb.toml"
+    scene.write_text(toml_text(data), encoding="utf-8")
+    return scene
+
+
+@pytest.mark.parametrize("plans, fragment", [
+    ({"draw": ["scheme"], "senses": 1}, "senses is true or false"),
+    ({"draw": ["velocity"], "senses": True}, "add \"scheme\" to draw"),
+])
+def test_senses_key_refused(tmp_path, capsys, plans, fragment):
+    from plans.cli import main
+
+    scene = _four_bar_with(tmp_path, plans)
+    assert main(["render", str(scene), "-o", str(tmp_path / "o"), "-q"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "plans.senses" in err and fragment in err
+    assert not (tmp_path / "o").exists()
 
 
 # -- 7. coupler points -------------------------------------------------------------------------
