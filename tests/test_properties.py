@@ -1119,15 +1119,20 @@ def test_walk_from_the_sketch_keeps_the_branch(case, t):
     size = max(mech.size, load(target.scene)[0].size)
     err = max(np.linalg.norm(m.position(p)[0] - np.asarray(xy)) for p, xy in target.scene["points"].items()) / size
     record(f"{case.form}: walk: |r - r_closed form| / size", err, f"{case.label} → {target.phi:.6g}°")
-    assert err < TOL_WALK, f"{case.label}: walked to {target.phi:g}°, a point is {err:.3g}·size off"
+    # two formulas for one pose differ by a few ulps amplified by 1/|sin| (the group's
+    # conditioning there; the walk may end 0.5° from a singular angle, |sin| ~ 0.009);
+    # velocities from the two poses differ by that times 1/|sin| again, accelerations twice
+    cond = min([1.0] + [abs(float(s[0])) for s in m.sines.values()])
+    tol = {k: max(TOL_WALK, 16 * EPS / cond ** (k + 1)) for k in range(3)}
+    assert err < tol[0], f"{case.label}: walked to {target.phi:g}°, a point is {err:.3g}·size off"
     there = check(target)
-    for qty in ("velocity", "acceleration"):
+    for k, qty in ((1, "velocity"), (2, "acceleration")):
         got = {p: getattr(m, qty)(p)[0] for p in target.scene["points"]}
         want = {p: getattr(there, qty)(p)[0] for p in target.scene["points"]}
         scale = max(np.linalg.norm(v) for v in want.values())
         err = max(np.linalg.norm(got[p] - want[p]) for p in got) / scale
         record(f"{case.form}: walk: {qty} vs sketched there", err, f"{case.label} → {target.phi:.6g}°")
-        assert err < TOL_WALK, f"{case.label}: walked to {target.phi:g}°, {qty} off by {err:.3g}"
+        assert err < tol[k], f"{case.label}: walked to {target.phi:g}°, {qty} off by {err:.3g} (tol {tol[k]:.1e})"
 
 
 #: A slotted lever whose crank cannot turn fully (limit positions at ±36.3°), sketched at

@@ -140,10 +140,8 @@ def _grid(mech: Mechanism, values: np.ndarray, start: float | None = None
     down = down[down < start]
     grid = np.concatenate([[start], up, down])
     sweeps = [np.arange(0, 1 + len(up)), np.concatenate([[0], np.arange(1 + len(up), len(grid))])]
-    first: dict[float, int] = {}
-    for k, g in enumerate(grid.tolist()):
-        first.setdefault(g, k)
-    index = np.array([first[v] for v in values.tolist()], dtype=int)
+    order = np.argsort(grid, kind="stable")          # the grid's values are distinct
+    index = order[np.searchsorted(grid[order], values)]
     return grid, sweeps, index
 
 
@@ -299,36 +297,26 @@ def _select(options: list[LinkState], choice: np.ndarray) -> LinkState:
 
 
 def _branch(mech: Mechanism, links: tuple[str, str], options: list, sweeps: list[np.ndarray]) -> np.ndarray:
-    """Index of the chosen option at every grid position: nearest the sketch at the start,
-    then nearest the previous step along each sweep."""
+    """Index of the chosen option at every grid position: the one nearest the sketch, kept
+    everywhere. A class II group's options are its assembly branches in a fixed order (the
+    sign of the assembly determinant: E left or right of D→F, and the like), and that sign
+    cannot change along a walk that passes no singular position — which
+    :func:`_check_crossing` refuses — so no step of the walk needs to choose again."""
     n = len(options[0].valid)
     if len(options) == 1:
         return np.zeros(n, dtype=int)
     locals_ = [(name, mech.links[name].local[p], p) for name in links for p in mech.links[name].points]
     size = mech.size
+    start = np.array([sweeps[0][0]])
 
     def signature(o) -> np.ndarray:
-        # the links' points and orientations: branches differ in one or the other
-        pts = [getattr(o, "m" if name == links[0] else "n").point(x) for name, x, _ in locals_]
-        turn = [size * np.stack([np.cos(s.theta), np.sin(s.theta)], axis=1) for s in (o.m, o.n)]
-        return np.concatenate(pts + turn, axis=1)
+        # the links' points and orientations at the sketch: branches differ in one or the other
+        m, k = o.m.take(start), o.n.take(start)
+        pts = [(m if name == links[0] else k).point(x)[0] for name, x, _ in locals_]
+        turn = [size * np.array([np.cos(s.theta[0]), np.sin(s.theta[0])]) for s in (m, k)]
+        return np.concatenate(pts + turn)
 
-    sig = [signature(o) for o in options]
     sketch = np.concatenate([mech.sketch[p] for _, _, p in locals_] + [np.array([size, 0.0, size, 0.0])])
     # an invalid option is never preferred over a valid one
-    penalty = [np.where(o.valid, 0.0, np.inf) for o in options]
-    choice = np.zeros(n, dtype=int)
-    first = int(np.argmin([np.sum((s[0] - sketch) ** 2) + pen[0] for s, pen in zip(sig, penalty)]))
-    k = len(options)
-    for sweep in sweeps:
-        # distance of every option at each step from every option at the step before, at once;
-        # the walk then only looks numbers up
-        step = [[(np.sum((sig[b][sweep[1:]] - sig[a][sweep[:-1]]) ** 2, axis=1)
-                  + penalty[b][sweep[1:]]).tolist() for b in range(k)] for a in range(k)]
-        c = first
-        choice[sweep[0]] = c
-        for j in range(len(sweep) - 1):
-            row = step[c]
-            c = min(range(k), key=lambda b: row[b][j])
-            choice[sweep[j + 1]] = c
-    return choice
+    cost = [float(np.sum((signature(o) - sketch) ** 2)) + (0.0 if o.valid[start[0]] else np.inf) for o in options]
+    return np.full(n, int(np.argmin(cost)), dtype=int)

@@ -11,6 +11,7 @@ the velocity v and acceleration a of the (possibly virtual) point o, and ω, ε 
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from functools import cached_property
 from typing import Mapping
 
 import numpy as np
@@ -45,13 +46,22 @@ class LinkState:
     epsilon: np.ndarray | None = None
     a: np.ndarray | None = None
 
+    @cached_property
+    def _cos_sin(self) -> tuple[np.ndarray, np.ndarray]:
+        """cos θ, sin θ, computed once per state (every point of the link uses them)."""
+        return np.cos(self.theta), np.sin(self.theta)
+
     def point(self, local: np.ndarray) -> np.ndarray:
         """World position of a local point (m)."""
-        return self.origin + rotate(local, self.theta)
+        return self.origin + self.direction(local)
 
     def direction(self, local: np.ndarray) -> np.ndarray:
         """World direction of a local direction vector."""
-        return rotate(local, self.theta)
+        c, s = self._cos_sin
+        out = np.empty(self.origin.shape)
+        out[:, 0] = c * local[0] - s * local[1]
+        out[:, 1] = s * local[0] + c * local[1]
+        return out
 
     def velocity(self, x: np.ndarray) -> np.ndarray:
         """v_X of the link's point now at world position ``x`` (m/s)."""
