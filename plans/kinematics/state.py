@@ -21,7 +21,10 @@ __all__ = ["J", "cross", "rotate", "LinkState", "Motion"]
 
 def J(v: np.ndarray) -> np.ndarray:
     """k × v: the vector turned by +90°."""
-    return np.stack([-v[..., 1], v[..., 0]], axis=-1)
+    out = np.empty(np.shape(v))
+    out[..., 0] = -v[..., 1]
+    out[..., 1] = v[..., 0]
+    return out
 
 
 def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -75,18 +78,29 @@ class LinkState:
     def with_velocity(self, omega: np.ndarray, x: np.ndarray, v_x: np.ndarray) -> "LinkState":
         """The state with ω and the velocity ``v_x`` of its point at ``x``."""
         omega = np.broadcast_to(np.asarray(omega, float), self.theta.shape).copy()
-        return replace(self, omega=omega, v=v_x + omega[:, None] * J(self.origin - x))
+        return self._keep_cos_sin(replace(self, omega=omega, v=v_x + omega[:, None] * J(self.origin - x)))
 
     def with_acceleration(self, epsilon: np.ndarray, x: np.ndarray, a_x: np.ndarray) -> "LinkState":
         """The state with ε and the acceleration ``a_x`` of its point at ``x``."""
         epsilon = np.broadcast_to(np.asarray(epsilon, float), self.theta.shape).copy()
         r = self.origin - x
-        return replace(self, epsilon=epsilon, a=a_x + epsilon[:, None] * J(r) - (self.omega ** 2)[:, None] * r)
+        return self._keep_cos_sin(replace(self, epsilon=epsilon,
+                                          a=a_x + epsilon[:, None] * J(r) - (self.omega ** 2)[:, None] * r))
 
     def take(self, index: np.ndarray) -> "LinkState":
-        """The state at a subset of positions."""
-        return LinkState(*(None if f is None else f[index] for f in
-                           (self.theta, self.origin, self.omega, self.v, self.epsilon, self.a)))
+        """The state at a subset of positions (cos θ, sin θ taken along when known)."""
+        out = LinkState(*(None if f is None else f[index] for f in
+                          (self.theta, self.origin, self.omega, self.v, self.epsilon, self.a)))
+        if "_cos_sin" in self.__dict__:
+            c, s = self.__dict__["_cos_sin"]
+            out.__dict__["_cos_sin"] = (c[index], s[index])
+        return out
+
+    def _keep_cos_sin(self, other: "LinkState") -> "LinkState":
+        """``other`` (this pose with more motion) keeps this state's cos θ, sin θ."""
+        if "_cos_sin" in self.__dict__:
+            other.__dict__["_cos_sin"] = self.__dict__["_cos_sin"]
+        return other
 
 
 @dataclass(frozen=True)
