@@ -7,7 +7,8 @@ from dataclasses import dataclass
 
 @dataclass(frozen=True)
 class Style:
-    """Line weights, symbol sizes, text heights (mm) and the coordinate precision."""
+    """Line weights, symbol sizes, text heights (mm) and the coordinate precision. The sheet's
+    format, frame and title block are in :mod:`.sheet`, the font and its metrics in :mod:`.text`."""
 
     link: float = 0.7
     vector: float = 0.35
@@ -21,19 +22,15 @@ class Style:
     support_size: float = 5.0
     hatch_step: float = 1.8
     hatch_length: float = 2.2
-    margin: float = 14.0
-    header: float = 16.0
-    footer: float = 22.0
     decimals: int = 3
     dash: str = "3 1.5"
     colour: str = "#000"
     vector_colour: str = "#1f3a93"
     component_colour: str = "#a12a2a"
     construction_colour: str = "#666"
-    font: str = "DejaVu Serif, Times New Roman, serif"
 
     def __post_init__(self) -> None:
-        for name in ("link", "vector", "thin", "text", "arrow_length", "arrow_width", "joint_radius", "margin"):
+        for name in ("link", "vector", "thin", "text", "arrow_length", "arrow_width", "joint_radius"):
             if not getattr(self, name) > 0:
                 raise ValueError(f"Style.{name} must be positive")
         if not 1 <= self.decimals <= 8:
