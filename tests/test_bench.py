@@ -15,12 +15,14 @@ import pytest
 
 from plans.bench import QUICK, format_table
 from plans.bench.chart import Chart, Series, draw_chart, ticks
-from plans.bench.sections import Column, peer_comparison
+from plans.bench.sections import (AGREEMENT_TARGET, CLASS_COST_TARGET, NUMBA_TARGET, Column, numba_comparison,
+                                  peer_comparison)
 from plans.cli import main
 
 SVG = "{http://www.w3.org/2000/svg}"
 TITLES = ("1. Drawing precision", "2. Solver tolerance", "3. Cycle resolution", "4. Throughput",
-          "4b. Plans rendered per second", "5. Peer comparison")
+          "4b. Plans rendered per second", "5. Peer comparison", "6. Crank-slider full kinematics",
+          "7. Class III / IV cost per position")
 
 
 def _strict(text: str) -> dict:
@@ -158,6 +160,80 @@ def test_peer_comparison_is_skipped_without_pylinkage(monkeypatch):
     monkeypatch.setattr(builtins, "__import__", no_pylinkage)
     s = peer_comparison(QUICK)
     assert s.skipped and 'pip install ".[bench]"' in s.skipped and not s.rows and not s.charts
+
+
+def _positive(x) -> bool:
+    return isinstance(x, (int, float)) and math.isfinite(x) and x > 0
+
+
+def test_numba_comparison_times_both_pylinkage_paths_or_says_not_installed(bench):
+    text, report, out = bench
+    sec = report["sections"]["numba_comparison"]
+    assert not sec["skipped"] and "numba-cost.svg" in report["charts"]
+    r = sec["rows"]
+    assert [x["positions"] for x in r] == list(QUICK.numba_positions)
+    assert sec["summary"]["target"] == NUMBA_TARGET and sec["summary"]["agreement_target"] == AGREEMENT_TARGET
+    for x in r:
+        assert _positive(x["plans_us_per_position"])
+        if sec["summary"]["pylinkage"] is None:
+            assert x["pylinkage"] == "pylinkage not installed"
+            assert x["numba_us_per_position"] is None and x["pure_python_us_per_position"] is None
+            continue
+        # the pure-Python path runs in a child process: it is measured whenever pylinkage is installed
+        assert _positive(x["pure_python_us_per_position"]), x["pylinkage"]
+        assert math.isclose(x["pure_python_over_plans"],
+                            x["pure_python_us_per_position"] / x["plans_us_per_position"], rel_tol=1e-9)
+        assert 0 <= x["pure_python_max_rel"] < AGREEMENT_TARGET
+        if sec["summary"]["numba"] is None:
+            assert x["pylinkage"].startswith("numba not installed") and x["numba_us_per_position"] is None
+            continue
+        assert x["pylinkage"] == "numba + pure Python"
+        assert _positive(x["numba_us_per_position"])
+        assert math.isclose(x["numba_over_plans"], x["numba_us_per_position"] / x["plans_us_per_position"],
+                            rel_tol=1e-9)
+        for key in ("numba_dr_rel", "numba_dv_rel", "numba_da_rel"):
+            assert 0 <= x[key] < AGREEMENT_TARGET, f"{key}: pylinkage's numba path and plans disagree"
+        assert x["target"] == "met" or x["target"].startswith("short ×")
+    assert any(h.startswith("crank-slider full kinematics") for h in report["headlines"])
+
+
+def test_numba_comparison_runs_without_pylinkage(monkeypatch):
+    real = builtins.__import__
+
+    def no_pylinkage(name, *args, **kwargs):
+        if name == "pylinkage" or name.startswith("pylinkage."):
+            raise ImportError("No module named 'pylinkage'")
+        return real(name, *args, **kwargs)
+
+    monkeypatch.setattr(builtins, "__import__", no_pylinkage)
+    s = numba_comparison(QUICK)
+    assert not s.skipped and len(s.rows) == len(QUICK.numba_positions)
+    for x in s.records():
+        assert _positive(x["plans_us_per_position"])
+        assert x["pylinkage"] == "pylinkage not installed" and x["numba_us_per_position"] is None
+    assert any("not installed" in n and 'pip install ".[bench]"' in n for n in s.notes)
+    assert [len(c.series) for c in s.charts] == [1]
+
+
+def test_class_cost_is_per_position_against_the_crank_slider(bench):
+    _, report, _ = bench
+    sec = report["sections"]["class_cost"]
+    assert "class-cost.svg" in report["charts"]
+    r = sec["rows"]
+    assert [x["scene"] for x in r] == ["crank_slider_central", "class3_six_link", "class4_six_link"]
+    assert [x["class"] for x in r] == [2, 3, 4]
+    for x in r:
+        assert x["positions"] == QUICK.class_positions == 72 and x["large_positions"] == QUICK.class_large_positions
+        assert _positive(x["us_per_position"]) and _positive(x["large_us_per_position"])
+        assert math.isclose(x["ratio"], x["us_per_position"] / r[0]["us_per_position"], rel_tol=1e-9)
+        assert math.isclose(x["large_ratio"], x["large_us_per_position"] / r[0]["large_us_per_position"],
+                            rel_tol=1e-9)
+    assert r[0]["target"] == "reference" and r[0]["ratio"] == 1.0
+    for x in r[1:]:
+        assert x["target"] == "met" or x["target"].startswith("over ×")
+    assert sec["summary"]["target"] == CLASS_COST_TARGET
+    assert set(sec["summary"]["ratios"]) == {"class3_six_link", "class4_six_link"}
+    assert sum(h.startswith("class ") for h in report["headlines"]) == 2
 
 
 def test_chart_is_deterministic_and_drops_non_positive_values_on_log_axes():

@@ -1,8 +1,10 @@
 """``plans bench``: what accuracy costs in time, measured in one run.
 
 Sections (see :mod:`plans.bench.sections`): drawing precision, solver tolerance, cycle
-resolution, throughput (vectorised vs per-angle loop, plans rendered per second) and a
-comparison with the peer library pylinkage (skipped when it is not installed). Each section
+resolution, throughput (vectorised vs per-angle loop, plans rendered per second), a
+comparison with the peer library pylinkage (skipped when it is not installed), the
+crank-slider's full kinematics against pylinkage's numba and pure-Python paths, and the cost
+per position of class III/IV groups against the crank-slider. Each section
 prints a table; :func:`run` also writes ``bench.json`` (every figure, the machine, the run
 time) and one SVG chart per figure into the output folder.
 """
@@ -21,7 +23,8 @@ from typing import Any, TextIO
 import numpy as np
 
 from .chart import Chart, Series, draw_chart
-from .sections import FULL, QUICK, SECTIONS, THROUGHPUT_TARGET, Column, Config, Section
+from .sections import (AGREEMENT_TARGET, CLASS_COST_TARGET, FULL, NUMBA_TARGET, QUICK, SECTIONS,
+                       THROUGHPUT_TARGET, Column, Config, Section)
 
 __all__ = ["run", "machine", "format_table", "Chart", "Series", "Column", "Config", "Section", "FULL", "QUICK"]
 
@@ -98,6 +101,29 @@ def _headlines(sections: dict[str, Section]) -> list[str]:
             for r in p.rows:
                 faster = f"plans {r[5]:.2f}× faster" if r[5] >= 1 else f"pylinkage {1 / r[5]:.2f}× faster"
                 lines.append(f"pylinkage {r[0]} ({r[1]}): {faster}; max |Δr| = {r[6]:.1e} m")
+    nb = sections.get("numba_comparison")
+    if nb and not nb.skipped:
+        for r in nb.rows:
+            if r[2] is None:
+                lines.append(f"crank-slider full kinematics, {r[0]:,} positions: plans {r[1]:.3f} µs/position; "
+                             f"pylinkage's numba path not measured ({r[11]})")
+                continue
+            agree = max(r[7], r[8], r[9])
+            short = "" if r[4] >= NUMBA_TARGET else f", short by a factor {NUMBA_TARGET / r[4]:.2f}"
+            faster = f"plans {r[4]:.2f}× faster than pylinkage's numba path" if r[4] >= 1 else \
+                f"pylinkage's numba path {1 / r[4]:.2f}× faster than plans"
+            lines.append(f"crank-slider full kinematics, {r[0]:,} positions: {faster} (target ≥ {NUMBA_TARGET:g}×: "
+                         f"{'met' if not short else 'NOT met'}"
+                         f"{short}), agreement {agree:.1e} of the crank (≤ {AGREEMENT_TARGET:.0e}: "
+                         f"{'met' if agree <= AGREEMENT_TARGET else 'NOT met'})"
+                         + (f"; plans {r[6]:.1f}× faster than its pure-Python path" if r[6] is not None else ""))
+    c = sections.get("class_cost")
+    if c and not c.skipped:
+        for r in c.rows[1:]:
+            verdict = "met" if r[5] <= CLASS_COST_TARGET else \
+                f"NOT met, over by a factor {r[5] / CLASS_COST_TARGET:.1f}"
+            lines.append(f"class {r[1]} ({r[0]}) at {r[3]} positions a turn: {r[5]:.1f}× the crank-slider per "
+                         f"position (target ≤ {CLASS_COST_TARGET:g}×: {verdict})")
     return lines
 
 
