@@ -1,17 +1,20 @@
 """plans: velocity and acceleration plans of planar linkages, drawn to scale.
 
 Data flows one way: scene → model → structure → kinematics → constructions → drawing →
-checking. The names a mechanism engineer uses are the public API.
+checking. The names a mechanism engineer uses are the public API; ``plans.render(scene)``
+renders a scene (or a scene file) to :class:`Sheets`, which Jupyter displays and ``.save``
+writes.
 """
 
-from .errors import (AssemblyError, DrawingError, PlansError, SceneError, SingularPositionError,
+from .errors import (AssemblyError, DrawingError, OutputError, PlansError, SceneError, SingularPositionError,
                      StructureError)
 from .kinematics import Motion, analyse
 from .model import Mechanism, build_mechanism
+from .pipeline import Sheet, Sheets, render
 from .scene import Scene, parse_scene, read_scene
 from .structure import Structure, analyse_structure
 
-__all__ = ["AssemblyError", "DrawingError", "PlansError", "SceneError", "SingularPositionError",
+__all__ = ["AssemblyError", "DrawingError", "OutputError", "PlansError", "SceneError", "SingularPositionError",
            "StructureError", "Motion", "analyse", "Mechanism", "build_mechanism", "Scene", "parse_scene",
-           "read_scene", "Structure", "analyse_structure"]
+           "read_scene", "Sheet", "Sheets", "render", "Structure", "analyse_structure"]
 __version__ = "0.1.0"

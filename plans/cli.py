@@ -14,7 +14,7 @@ import numpy as np
 from .errors import OutputError, PlansError, one_line
 from .export import DEFAULT_DPI, FORMATS, MAX_DPI, MIN_DPI, convert, parse_dpi, parse_formats, require_cairo
 from .output import check_folder, write_files
-from .render import Rendered, render_scene
+from .pipeline import Rendered, render_scene
 
 __all__ = ["main"]
 

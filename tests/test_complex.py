@@ -312,7 +312,7 @@ def test_uncertain_scale_plan(name):
 def test_warning_gives_distance_to_the_limit_position(tmp_path):
     """Near a singular position the terminal warning says how far it is; the estimate (secant
     steps on the condition figure) matches the Moore–Spence fold of tests/reference.py."""
-    from plans.render import singular_distance
+    from plans.pipeline import singular_distance
     mech, st = _load(_folding_triad())
     ref = Reference(mech)
     fold = ref.fold(ref.solve([97.5])[0]).value
@@ -326,7 +326,7 @@ def test_warning_gives_distance_to_the_limit_position(tmp_path):
     scene.write_text("\n".join(['title = "fold"', "[points]", *lines, "[links]", *links, "[drive]",
                                 'link = "1"', f"angle = {fold - 0.1!r}", "omega = 10.0",
                                 "[plans]", 'draw = ["velocity"]']), encoding="utf-8")
-    from plans.render import render_scene
+    from plans.pipeline import render_scene
     warnings = render_scene(scene).warnings
     assert len(warnings) == 1 and "III(2-3-4-5)" in warnings[0] and "about 0.1° from it" in warnings[0]
 

@@ -19,7 +19,7 @@ from plans.errors import OutputError
 from plans.export import (DEFAULT_DPI, convert, parse_dpi, parse_formats, require_cairo, sheet_size_mm,
                           svg_to_pdf, svg_to_png)
 from plans.output import write_files
-from plans.render import render_scene
+from plans.pipeline import render_scene
 
 from conftest import CRANK_SLIDER
 

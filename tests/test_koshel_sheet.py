@@ -14,7 +14,7 @@ from plans.constructions import uncertain_plan
 from plans.constructions.koshel import fit_segment, koshel_sheet
 from plans.kinematics import special
 from plans.kinematics.centres import centres
-from plans.render import read_scene, solve_scene
+from plans.pipeline import read_scene, solve_scene
 from plans.structure import ComplexGroup
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"

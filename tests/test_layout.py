@@ -17,7 +17,7 @@ from conftest import EXAMPLES, toml_text
 from plans.drawing.text import box as text_box, runs
 from plans.errors import PlansError
 from plans.layout import LayoutReport, measure_layout
-from plans.render import render_scene
+from plans.pipeline import render_scene
 from test_atlas import ATLAS, REFUSALS, SHEETS, drive_key, load, perturbed
 
 COUNTS = LayoutReport.COUNTS

@@ -53,7 +53,7 @@ from plans.checking import check_svg
 from plans.errors import AssemblyError, SingularPositionError
 from plans.kinematics import analyse
 from plans.model import build_mechanism
-from plans.render import render_scene
+from plans.pipeline import render_scene
 from plans.scene import FRAME, parse_scene
 from plans.structure import analyse_structure
 

@@ -18,7 +18,7 @@ from plans.constructions.scheme import BLOCK_MM
 from plans.drawing import Heading, Style
 from plans.drawing.svg import draw_scheme
 from plans.drawing.text import box, runs
-from plans.render import _scales, solve_scene
+from plans.pipeline import _scales, solve_scene
 from plans.scene import read_scene
 
 from conftest import EXAMPLES, toml_text

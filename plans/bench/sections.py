@@ -531,7 +531,7 @@ def throughput(cfg: Config) -> Section:
 
 
 def render_rate(cfg: Config) -> Section:
-    """Plans rendered per second by plans.render.render_scene (everything but writing files)."""
+    """Plans rendered per second by plans.pipeline.render_scene (everything but writing files)."""
     rows = []
     for stem in cfg.render_scenes:
         path = _example(stem)

@@ -2,5 +2,6 @@
 
 from .state import LinkState, Motion
 from .solve import analyse, SINGULAR_SIN, WARN_SIN
+from .sliders import Sliding, link_angles, sliding
 
-__all__ = ["LinkState", "Motion", "analyse", "SINGULAR_SIN", "WARN_SIN"]
+__all__ = ["LinkState", "Motion", "analyse", "SINGULAR_SIN", "WARN_SIN", "Sliding", "link_angles", "sliding"]

@@ -1,13 +1,22 @@
 """The whole path for one scene: read → model → structure → kinematics → constructions →
 SVG and JSON text → files. Nothing is written until everything has been computed and
-checked, so a failing scene leaves no partial files behind."""
+checked, so a failing scene leaves no partial files behind.
+
+:func:`render` (``plans.render``) is the Python API: a :class:`~plans.scene.Scene` or a scene
+file in, :class:`Sheets` out — the sheets display themselves in Jupyter and ``.save`` writes
+them (SVG, PNG, PDF and the JSON report), all or nothing."""
 
 from __future__ import annotations
 
+import base64
+import html
 import json
 import math
+import os
+import re
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Iterator, Sequence
 
 import numpy as np
 
@@ -19,14 +28,17 @@ from .constructions.centres import centres_sheet
 from .constructions.koshel import fit_segment, koshel_sheet
 from .drawing import Heading, Style, draw_centres, draw_plan, draw_scheme
 from .drawing.koshel import draw_koshel
-from .errors import ConstructionError, PlansError
+from .errors import ConstructionError, OutputError, PlansError
+from .export import DEFAULT_DPI, convert, parse_formats, require_cairo
 from .kinematics import WARN_SIN, Motion, analyse, special
 from .kinematics.centres import Centres, centres
+from .kinematics.sliders import link_angles, sliding
+from .output import check_folder, write_files
 from .model import build_mechanism
 from .scene import Scene, read_scene
 from .structure import ComplexGroup, analyse_structure
 
-__all__ = ["Rendered", "render_scene", "report", "solve_scene"]
+__all__ = ["Rendered", "Sheet", "Sheets", "render", "render_scene", "report", "solve_scene"]
 
 
 @dataclass(frozen=True)
@@ -147,6 +159,8 @@ def report(scene: Scene, motion: Motion, scales: Scales, solutions: dict | None 
     r = {p: motion.position(p) for p in mech.sketch}
     v = {p: motion.velocity(p) for p in mech.sketch} if motion.order >= 1 else {}
     a = {p: motion.acceleration(p) for p in mech.sketch} if motion.order >= 2 else {}
+    angles = link_angles(motion)
+    slides = sliding(motion)
     for i, value in enumerate(motion.values):
         points = {}
         for p in mech.sketch:
@@ -157,12 +171,15 @@ def report(scene: Scene, motion: Motion, scales: Scales, solutions: dict | None 
                 entry["a"] = [float(c) for c in a[p][i]]
             points[p] = entry
         links = {}
-        if motion.order >= 1:
-            for name, state in motion.links.items():
-                links[name] = {"omega": float(state.omega[i])}
-                if motion.order >= 2:
-                    links[name]["epsilon"] = float(state.epsilon[i])
+        for name, state in motion.links.items():
+            links[name] = {"angle": float(angles[name][i])}
+            if motion.order >= 1:
+                links[name]["omega"] = float(state.omega[i])
+            if motion.order >= 2:
+                links[name]["epsilon"] = float(state.epsilon[i])
         pos = {key: float(value), "points": points, "links": links, "scales": scales.as_dict()}
+        if slides:
+            pos["sliders"] = {k: _slide(sl, i) for k, sl in slides.items()}
         if motion.sines:
             pos["conditioning"] = {g: float(s[i]) for g, s in motion.sines.items()}
         if ic is not None:
@@ -170,8 +187,6 @@ def report(scene: Scene, motion: Motion, scales: Scales, solutions: dict | None 
             pos["relative_centres"] = {f"{a}-{b}": _xy(c.at(i)) for (a, b), c in ic.relative.items()}
         if special_pts:
             pos["special_points"] = {g: {p.name: _special(p, i) for p in pts} for g, pts in special_pts.items()}
-        if not links:
-            del pos["links"]
         positions.append(pos)
     return {"title": scene.title, "structure": motion.structure.as_dict(), "positions": positions}
 
@@ -220,6 +235,19 @@ def _xy(p) -> list[float] | None:
     return None if p is None else [float(p[0]), float(p[1])]
 
 
+def _slide(sl, i: int) -> dict:
+    """A prismatic pair at position i: its point, the guide's direction u, the sliding s (m)
+    along u from the guide's anchor, σ (m/s) and σ̇ (m/s²) along u, the Coriolis vector (m/s²)
+    — each when computed (:mod:`plans.kinematics.sliders`)."""
+    out = {"point": sl.point, "u": _xy(sl.u[i]), "s": float(sl.s[i])}
+    if sl.v is not None:
+        out["v"] = float(sl.v[i])
+    if sl.a is not None:
+        out["a"] = float(sl.a[i])
+        out["coriolis"] = [float(c) + 0.0 for c in sl.coriolis[i]]    # + 0.0: no -0.0
+    return out
+
+
 def _special(p, i: int) -> dict:
     """A special point at position i: r (m), the sine between its axes, v and a when known;
     r is null when the axes are parallel (the point is at infinity)."""
@@ -244,19 +272,25 @@ def triads(motion: Motion) -> dict:
 
 
 def render_scene(path: str | Path, style: Style = Style()) -> Rendered:
-    """Compute every file of a scene (nothing is written).
+    """Compute every file of a scene file (nothing is written); the files are named after the
+    file's stem.
 
     A mechanism at rest (the drive stands) gets, instead of each plan with nothing to draw, a
     sheet saying so, and a warning; so does Koshel's plan where its construction degenerates
     (:class:`~plans.errors.ConstructionError`) or fails its check. Every other sheet is drawn."""
-    scene = read_scene(path)
-    stem = Path(path).stem
+    return _render(read_scene(path), stem=Path(path).stem, where=str(path), style=style)
+
+
+def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rendered:
+    """Every file of a scene already read, named ``<stem>…``; ``where`` (the scene's file, or
+    None) locates error messages. Nothing here reads or writes a file."""
+    path = where or f"scene {scene.title!r}"     # the prefix of the messages below
     try:
         motion = solve_scene(scene)
         rest = at_rest(motion)
         scales = _scales(scene, motion, rest)
     except PlansError as exc:
-        raise exc.in_file(str(path)) if hasattr(exc, "in_file") else exc
+        raise exc.in_file(where) if where and hasattr(exc, "in_file") else exc
     solutions = triads(motion)
     for g, triad in solutions.items():
         worst = _disagreement(motion, triad)
@@ -388,3 +422,136 @@ def _similarity(motion: Motion, plan, i: int, tol: float = 1e-9) -> list[str]:
         if dev > 1e-6:
             out.append(f"images of link {link} are not similar to it (side ratios differ by {dev:.2e})")
     return out
+
+
+# --- the Python API: plans.render ----------------------------------------------------------
+
+#: Longest stem made from a title (characters).
+MAX_STEM_CHARS = 60
+
+
+@dataclass(frozen=True)
+class Sheet:
+    """One drawn sheet: ``name`` (``"velocity"``, ``"acceleration-30"``: the file name without
+    the stem and ``.svg``), ``file`` (``"four_bar-velocity-30.svg"``) and ``svg`` (its text).
+    Jupyter displays it (``_repr_svg_``)."""
+
+    name: str
+    file: str
+    svg: str
+
+    def _repr_svg_(self) -> str:
+        return self.svg
+
+    def save(self, folder: str | Path, formats: str | Sequence[str] = ("svg",), *,
+             dpi: float = DEFAULT_DPI) -> list[Path]:
+        """Write this sheet into ``folder`` in ``formats`` (see :meth:`Sheets.save`)."""
+        return _save({self.file: self.svg}, folder, formats, dpi)
+
+
+@dataclass(frozen=True)
+class Sheets(Rendered):
+    """What :func:`render` computed for one scene: ``files`` (file name → text: every sheet's
+    SVG and the JSON report), ``motion`` (:class:`~plans.kinematics.Motion`), ``scales``,
+    ``warnings`` and ``stem``; nothing is written until :meth:`save`.
+
+    ``sheets`` maps a sheet's name (``"scheme"``, ``"velocity-30"``) to its :class:`Sheet`;
+    ``sheets_[name]``, iteration and ``len`` go through them too. ``report`` is the JSON report
+    as a dict. In Jupyter the result shows every sheet (``_repr_html_``), or the first one where
+    only SVG is shown (``_repr_svg_``)."""
+
+    @property
+    def sheets(self) -> dict[str, Sheet]:
+        prefix = f"{self.stem}-"
+        return {name[len(prefix):-len(".svg")]: Sheet(name[len(prefix):-len(".svg")], name, text)
+                for name, text in self.files.items() if name.endswith(".svg")}
+
+    @property
+    def json(self) -> str:
+        """The JSON report's text (the file ``<stem>.json``)."""
+        return self.files[f"{self.stem}.json"]
+
+    @property
+    def report(self) -> dict:
+        """The JSON report, parsed: ``report["positions"][i]["points"]["B"]["v"]``."""
+        return json.loads(self.json)
+
+    def __getitem__(self, name: str) -> Sheet:
+        return self.sheets[name]
+
+    def __iter__(self) -> Iterator[Sheet]:
+        return iter(self.sheets.values())
+
+    def __len__(self) -> int:
+        return sum(name.endswith(".svg") for name in self.files)
+
+    def _repr_svg_(self) -> str | None:
+        first = next(iter(self.sheets.values()), None)
+        return None if first is None else first.svg
+
+    def _repr_html_(self) -> str:
+        """Every sheet, one below the other, each an ``<img>`` of its SVG (kept apart so that
+        the ids of one sheet never meet another's), with its name above it."""
+        parts = [f"<div><p><b>{html.escape(self.motion.mechanism.title)}</b> — {len(self)} sheets "
+                 f"({html.escape(self.stem)})</p>"]
+        for w in self.warnings:
+            parts.append(f"<p>warning: {html.escape(w)}</p>")
+        for sheet in self:
+            data = base64.b64encode(sheet.svg.encode("utf-8")).decode("ascii")
+            parts.append(f'<figure style="margin:0 0 1em 0"><figcaption>{html.escape(sheet.name)}</figcaption>'
+                         f'<img src="data:image/svg+xml;base64,{data}" alt="{html.escape(sheet.file)}" '
+                         f'style="max-width:100%"></figure>')
+        return "".join(parts) + "</div>"
+
+    def save(self, folder: str | Path, formats: str | Sequence[str] = ("svg",), *,
+             dpi: float = DEFAULT_DPI) -> list[Path]:
+        """Write the sheets in ``formats`` (``("svg", "png", "pdf")`` or ``"svg,png"``; PNG at
+        ``dpi`` dots per inch) and the JSON report into ``folder`` (made if needed), as
+        ``plans render --format`` does: all or nothing, nothing written on any error
+        (:class:`~plans.errors.OutputError`). Returns the paths written."""
+        return _save(self.files, folder, formats, dpi)
+
+
+def _save(files: dict[str, str], folder: str | Path, formats: str | Sequence[str], dpi: float) -> list[Path]:
+    wanted = parse_formats(formats if isinstance(formats, str) else ",".join(map(str, formats)))
+    check_folder(folder)
+    if set(wanted) - {"svg"}:
+        require_cairo()
+    return write_files(convert(files, wanted, dpi), folder)
+
+
+def render(scene: Scene | str | os.PathLike, *, style: Style = Style(), stem: str | None = None) -> Sheets:
+    """Render a scene: a :class:`~plans.scene.Scene` (from :func:`~plans.scene.read_scene` or
+    :func:`~plans.scene.parse_scene`) or the path of a scene file. Nothing is read but that
+    file, nothing is written (see :meth:`Sheets.save`).
+
+    The files are named ``<stem>-<sheet>.svg`` and ``<stem>.json``: ``stem`` when given, else the
+    scene file's stem (a Scene read from a file keeps it, so both ways give the same files byte
+    for byte), else one made from the title (``"Crank-slider mechanism"`` → ``crank-slider_mechanism``).
+    Errors are the :class:`~plans.errors.PlansError` of ``plans render``."""
+    if isinstance(scene, (str, os.PathLike)):
+        path = Path(scene)
+        rendered = render_scene(path, style) if stem is None else \
+            _render(read_scene(path), stem=_checked_stem(stem), where=str(path), style=style)
+    elif isinstance(scene, Scene):
+        name = _checked_stem(stem) if stem is not None else \
+            Path(scene.file).stem if scene.file else stem_of(scene.title)
+        rendered = _render(scene, stem=name, where=scene.file, style=style)
+    else:
+        raise TypeError(f"plans.render takes a Scene or the path of a scene file, not {type(scene).__name__}")
+    return Sheets(rendered.stem, rendered.files, rendered.motion, rendered.scales, rendered.warnings)
+
+
+def stem_of(title: str) -> str:
+    """A file stem from a title: lower case, every run of characters other than letters,
+    digits, ``-`` and ``_`` one ``_``, at most :data:`MAX_STEM_CHARS` characters; ``mechanism``
+    when nothing is left."""
+    stem = re.sub(r"[^\w-]+", "_", title.strip().lower())[:MAX_STEM_CHARS].strip("_-")
+    return stem or "mechanism"
+
+
+def _checked_stem(stem: str) -> str:
+    """``stem`` when it names files in one folder (no separator, not empty, ``.`` or ``..``)."""
+    if not isinstance(stem, str) or not stem or stem in (".", "..") or re.search(r"[/\\\x00]", stem):
+        raise OutputError(f"stem {stem!r} cannot name a file; give a plain name such as 'four_bar'", key="stem")
+    return stem
