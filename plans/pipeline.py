@@ -30,7 +30,7 @@ from .drawing import Heading, Style, draw_centres, draw_plan, draw_scheme
 from .drawing.koshel import draw_koshel
 from .errors import ConstructionError, OutputError, PlansError
 from .export import DEFAULT_DPI, convert, parse_formats, require_cairo
-from .kinematics import WARN_SIN, Motion, analyse, special
+from .kinematics import WARN_SIN, Motion, analyse, singular, special
 from .kinematics.centres import Centres, centres
 from .kinematics.sliders import link_angles, sliding
 from .output import check_folder, write_files
@@ -191,46 +191,6 @@ def report(scene: Scene, motion: Motion, scales: Scales, solutions: dict | None 
     return {"title": scene.title, "structure": motion.structure.as_dict(), "positions": positions}
 
 
-def singular_distance(motion: Motion, group: str, i: int) -> float | None:
-    """How far the drive is from the singular position of ``group`` nearest position i
-    (degrees or metres), or None when it cannot be found nearby. Secant steps on the squared
-    condition figure c², which falls to zero linearly at a limit position (c ~ √δ there) and
-    quadratically where a branch crosses (c ~ δ); a step that lands past a limit position
-    (the group no longer assembles) is halved."""
-    mech, structure = motion.mechanism, motion.structure
-    h = 0.05 if mech.drive.kind == "rotary" else 1e-4 * mech.size
-
-    def f(x: float) -> float | None:
-        try:
-            return float(analyse(mech, structure, np.array([x]), order=1).sines[group][0]) ** 2
-        except PlansError:
-            return None
-
-    start = float(motion.values[i])
-    x0, f0 = start, float(motion.sines[group][i]) ** 2
-    x1 = start + h
-    f1 = f(x1)
-    if f1 is None:
-        x1, f1 = start - h, f(start - h)
-    for _ in range(16):
-        if f1 is None or f1 == f0:
-            return None
-        x2 = x1 - f1 * (x1 - x0) / (f1 - f0)
-        if abs(x2 - start) > 20.0 * h + 10.0 * abs(x1 - start):
-            return None
-        f2 = f(x2)
-        tries = 0
-        while f2 is None and tries < 30:      # past a limit position: step back towards x1
-            x2 = 0.5 * (x1 + x2)
-            f2, tries = f(x2), tries + 1
-        if f2 is None:
-            return None
-        if abs(x2 - x1) < 1e-6 * h:
-            return abs(x2 - start)
-        x0, f0, x1, f1 = x1, f1, x2, f2
-    return abs(x1 - start)
-
-
 def _xy(p) -> list[float] | None:
     return None if p is None else [float(p[0]), float(p[1])]
 
@@ -311,7 +271,7 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
         label = _position_label(motion, i)
         for g, s in motion.sines.items():
             if abs(s[i]) < WARN_SIN:
-                away = singular_distance(motion, g, i)
+                away = singular.distance(motion, g, i)
                 where = "" if away is None else f", about {away:.3g}{unit} from it"
                 warnings.append(f"{stem}: group {g} is near a singular position at {motion.values[i]:g}{unit} "
                                 f"(condition {s[i]:.2e}{where}); values are exact but sensitive")

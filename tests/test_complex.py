@@ -312,7 +312,7 @@ def test_uncertain_scale_plan(name):
 def test_warning_gives_distance_to_the_limit_position(tmp_path):
     """Near a singular position the terminal warning says how far it is; the estimate (secant
     steps on the condition figure) matches the Moore–Spence fold of tests/reference.py."""
-    from plans.pipeline import singular_distance
+    from plans.kinematics.singular import distance as singular_distance
     mech, st = _load(_folding_triad())
     ref = Reference(mech)
     fold = ref.fold(ref.solve([97.5])[0]).value

@@ -20,6 +20,7 @@ from ..structure import Structure
 from ..scene import FRAME, LINEAR_STEPS_PER_SIZE, STEP_DEG   # the walk's steps, bounded by the scene
 from ..structure import ComplexGroup
 from . import special
+from .compiled import CompiledGroup, walk as compiled_walk
 from .generic import GroupEquations
 from .groups import SINGULAR_REASON, accelerations, candidates, conditioning, velocities
 from .state import LinkState, Motion, rotate
@@ -108,7 +109,22 @@ def group_condition(mech: Mechanism, g: ComplexGroup, states: dict[str, LinkStat
     axes for a class III group, else the scaled Jacobian's σ_min/σ_max."""
     if special.supports(g):
         return special.condition(g, mech, states)
-    return GroupEquations(mech, g.links, g.pairs).condition(states)
+    eq = GroupEquations(mech, g.links, g.pairs)
+    known = {name: s for name, s in states.items() if name not in eq.col}
+    return CompiledGroup(mech, eq.links, eq.pairs, known).condition(eq.pose(states),
+                                                                    np.arange(len(states[g.links[0]].theta)))
+
+
+def _grid_condition(mech: Mechanism, g: ComplexGroup, eq: GroupEquations, states: dict[str, LinkState]
+                    ) -> np.ndarray:
+    """The condition figure along the walk, for :func:`_check_crossing`: a class III group's
+    special points (cheap), else the compiled group's stand-in with the same sign and the
+    same value wherever it is small."""
+    if special.supports(g):
+        return special.condition(g, mech, states)
+    known = {name: s for name, s in states.items() if name not in eq.col}
+    group = CompiledGroup(mech, eq.links, eq.pairs, known)
+    return group.crossing_figure(eq.pose(states), np.arange(len(next(iter(known.values())).theta)))
 
 
 def _refuse_singular(mech: Mechanism, g, sin: np.ndarray, values: np.ndarray) -> None:
@@ -188,7 +204,7 @@ def _positions(mech: Mechanism, structure: Structure, values: np.ndarray, start:
         if isinstance(g, ComplexGroup):
             eq = GroupEquations(mech, g.links, g.pairs)
             states.update(_continue(mech, g, eq, states, grid, sweeps, values))
-            _check_crossing(mech, g, group_condition(mech, g, states), grid, sweeps, values)
+            _check_crossing(mech, g, _grid_condition(mech, g, eq, states), grid, sweeps, values)
             continue
         options = candidates(g, mech, states, tol)
         choice = _branch(mech, g.links, options, sweeps)
@@ -232,6 +248,38 @@ def _check_crossing(mech: Mechanism, g, sin: np.ndarray, grid: np.ndarray, sweep
 
 def _continue(mech: Mechanism, g: ComplexGroup, eq: GroupEquations, states: dict[str, LinkState],
               grid: np.ndarray, sweeps: list[np.ndarray], values: np.ndarray) -> dict[str, LinkState]:
+    """Poses of a class III/IV group along the walk: the fast continuation of
+    :mod:`plans.kinematics.compiled` (coarse adaptive steps, then batched Newton at every
+    grid position, then the walk's acceptance tests), or, when that is not sure of every
+    position, the step-by-step walk (:func:`_walk`), which also reports any failure."""
+    q = _fast_walk(mech, eq, states, grid, sweeps)
+    if q is None:
+        return _walk(mech, g, eq, states, grid, sweeps, values)
+    return {name: LinkState(q[:, c + 2], q[:, c:c + 2]) for name, c in eq.col.items()}
+
+
+def _fast_walk(mech: Mechanism, eq: GroupEquations, states: dict[str, LinkState], grid: np.ndarray,
+               sweeps: list[np.ndarray]) -> np.ndarray | None:
+    """The group's poses (len(grid), 3k) by :func:`plans.kinematics.compiled.walk`, or None."""
+    known = {name: s for name, s in states.items() if name not in eq.col}
+    group = CompiledGroup(mech, eq.links, eq.pairs, known)
+    start = np.array([sweeps[0][0]])
+    q0, _, conv, _ = group.newton(np.zeros((1, group.n)), start)
+    if not conv[0]:
+        return None
+    q = np.empty((len(grid), group.n))
+    q[start[0]] = q0[0]
+    step = STEP_DEG if mech.drive.kind == "rotary" else mech.size / LINEAR_STEPS_PER_SIZE
+    for sweep in sweeps:
+        part = compiled_walk(group, sweep, grid[sweep], q[sweep[0]], step, JUMP_RATIO)
+        if part is None:
+            return None
+        q[sweep] = part
+    return q
+
+
+def _walk(mech: Mechanism, g: ComplexGroup, eq: GroupEquations, states: dict[str, LinkState],
+          grid: np.ndarray, sweeps: list[np.ndarray], values: np.ndarray) -> dict[str, LinkState]:
     """Poses of a class III/IV group along the walk: Newton at every step from the previous
     step (linear predictor), starting at the sketch, where every pose is the identity."""
     q = np.zeros((len(grid), 3 * len(eq.links)))

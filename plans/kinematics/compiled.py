@@ -1,0 +1,430 @@
+"""A class III/IV group's pair equations compiled once, and its positions over a whole walk.
+
+:class:`CompiledGroup` holds the same equations as :class:`~plans.kinematics.generic.GroupEquations`
+(revolute pair: X_a(P) − X_b(P) = 0; prismatic pair: θ_s − θ_g = 0, (X_s − Y_g)·n_g = 0),
+but as index arrays of local coordinates, with the known links' points precomputed at
+every position of the walk's grid: one residual + Jacobian evaluation is a few dozen numpy
+operations, for one position or for all of them at once. Rows and columns are scaled as in
+``GroupEquations`` (angle columns ÷ size, angle rows × size: every entry dimensionless).
+
+:func:`walk` finds the group's poses at every grid position of a sweep without stepping
+Newton through every 1° step in Python:
+
+1. an adaptive continuation over a coarse subset of the sweep's positions: tangent
+   predictor (q' from J·q' = −∂Φ/∂x, ∂Φ/∂x by differences of the known links' points on the
+   grid), Newton corrector, the step halved when Newton fails or the corrector lands far
+   from the predictor (a jump), doubled again when the path is smooth;
+2. batched Newton at every grid position at once, seeded by cubic Hermite interpolation
+   between the coarse nodes (so close that the Jacobians of the seeds, inverted once for
+   all positions, serve every step: :meth:`CompiledGroup.chord`; a position that does not
+   converge so goes on with full Newton, :meth:`CompiledGroup.newton`);
+3. the walk's own acceptance tests, vectorised over the whole sweep: every position
+   converged, none far from its seed, and no step moving more than ``JUMP_RATIO`` times
+   the step before (the jump test of the step-by-step walk).
+
+When any of these fails the caller falls back to the step-by-step walk, which then reports
+the failure (group, angle, reason) exactly as before; when they pass, every position is the
+root the step-by-step walk reaches (the same branch, to rounding).
+"""
+
+from __future__ import annotations
+
+from typing import Mapping
+
+import numpy as np
+
+from ..model import Mechanism
+from .generic import MAX_ITER, TOLERANCE
+from .state import LinkState
+
+__all__ = ["CompiledGroup", "walk"]
+
+States = Mapping[str, LinkState]
+
+
+class CompiledGroup:
+    """The pair equations of one group, with its known links' states over N positions."""
+
+    def __init__(self, mech: Mechanism, links: tuple[str, ...], pairs: tuple, known: States):
+        self.links = tuple(links)
+        self.pairs = tuple(pairs)
+        k = len(self.links)
+        self.n = n = 3 * k
+        if 2 * len(self.pairs) != n:
+            raise ValueError("an Assur group has 3 equations per link: 2 per pair")
+        self.size = size = float(mech.size)
+        index = {name: i for i, name in enumerate(self.links)}
+        self.index = index
+        n_pos = len(next(iter(known.values())).theta)
+        self.n_pos = n_pos
+        loc = mech.links
+        template = np.zeros((n, n))
+        known_rows = np.zeros((n_pos, n))
+        # revolute pairs: Φ = known + T·q + Mc·cos θ + Ms·sin θ (rows: x and y of each pair)
+        mc = np.zeros((n, k))
+        ms = np.zeros((n, k))
+        self.prismatic = []
+        for k_pair, pair in enumerate(self.pairs):
+            r = 2 * k_pair
+            if pair.kind == "R":
+                for link, sign in ((pair.a, 1.0), (pair.b, -1.0)):
+                    local = loc[link].local[pair.point]
+                    if link in index:
+                        L = index[link]
+                        template[r, 3 * L] += sign
+                        template[r + 1, 3 * L + 1] += sign
+                        mc[r, L] += sign * local[0]
+                        ms[r, L] -= sign * local[1]
+                        mc[r + 1, L] += sign * local[1]
+                        ms[r + 1, L] += sign * local[0]
+                    else:
+                        known_rows[:, r:r + 2] += sign * known[link].point(local)
+                continue
+            p = pair.prismatic
+            entry = {"row": r}
+            for role, link in (("slider", p.slider), ("guide", p.guide)):
+                anchor = p.anchor[link]
+                if link in index:
+                    entry[role] = (index[link], anchor)
+                else:
+                    st = known[link]
+                    entry[role] = (None, (st.theta, st.point(anchor), st.origin,
+                                          st.direction(p.normal) if role == "guide" else None))
+            entry["normal"] = p.normal
+            self.prismatic.append(entry)
+        self.template = template
+        self.known_rows = known_rows
+        self._t = np.ascontiguousarray(template.T)
+        self._mc = np.ascontiguousarray(mc.T)
+        self._ms = np.ascontiguousarray(ms.T)
+        self._jc = mc / size          # ∂Φ/∂θ = (−sin θ·Mc + cos θ·Ms), θ scaled by size
+        self._js = ms / size
+        self.cols = [c for c in range(n) if c % 3 != 2]
+
+    # -- equations -------------------------------------------------------------------------
+    def evaluate(self, q: np.ndarray, idx: np.ndarray, jacobian: bool = True):
+        """Scaled residual Φ (M, n) and, with ``jacobian``, scaled A (M, n, n) at poses ``q``
+        (M, n) with the known links at grid positions ``idx`` (M,)."""
+        th = q[:, 2::3]
+        c, s = np.cos(th), np.sin(th)
+        phi = self.known_rows[idx] + q @ self._t + c @ self._mc + s @ self._ms
+        if jacobian:
+            a = np.empty((len(idx), self.n, self.n))
+            a[:] = self.template
+            a[:, :, 2::3] = c[:, None, :] * self._js - s[:, None, :] * self._jc
+        for e in self.prismatic:
+            self._prismatic(e, q, c, s, idx, phi, a if jacobian else None)
+        return (phi, a) if jacobian else phi
+
+    def _link_frame(self, L: int, q, c, s, local):
+        """θ, world point of ``local``, origin and the rotation's (cos, sin) of group link L."""
+        cl, sl = c[:, L], s[:, L]
+        o = q[:, 3 * L:3 * L + 2]
+        pt = o + np.column_stack([cl * local[0] - sl * local[1], sl * local[0] + cl * local[1]])
+        return q[:, 3 * L + 2], pt, o, cl, sl
+
+    def _prismatic(self, e, q, c, s, idx, phi, a) -> None:
+        size, r = self.size, e["row"]
+        nloc = e["normal"]
+        Ls, sdat = e["slider"]
+        Lg, gdat = e["guide"]
+        if Ls is None:
+            th_s, xs, os_ = sdat[0][idx], sdat[1][idx], sdat[2][idx]
+        else:
+            th_s, xs, os_, _, _ = self._link_frame(Ls, q, c, s, sdat)
+        if Lg is None:
+            th_g, yg, og, nrm = gdat[0][idx], gdat[1][idx], gdat[2][idx], gdat[3][idx]
+        else:
+            th_g, yg, og, cg, sg = self._link_frame(Lg, q, c, s, gdat)
+            nrm = np.column_stack([cg * nloc[0] - sg * nloc[1], sg * nloc[0] + cg * nloc[1]])
+        d = th_s - th_g
+        gap = xs - yg
+        phi[:, r] = size * np.arctan2(np.sin(d), np.cos(d))
+        phi[:, r + 1] = gap[:, 0] * nrm[:, 0] + gap[:, 1] * nrm[:, 1]
+        if a is None:
+            return
+        if Ls is not None:
+            c0 = 3 * Ls
+            rs = xs - os_
+            a[:, r, c0 + 2] = 1.0
+            a[:, r + 1, c0:c0 + 2] = nrm
+            a[:, r + 1, c0 + 2] = (-rs[:, 1] * nrm[:, 0] + rs[:, 0] * nrm[:, 1]) / size
+        if Lg is not None:
+            c0 = 3 * Lg
+            rg = yg - og
+            a[:, r, c0 + 2] = -1.0
+            a[:, r + 1, c0:c0 + 2] = -nrm
+            a[:, r + 1, c0 + 2] = ((rg[:, 1] * nrm[:, 0] - rg[:, 0] * nrm[:, 1])
+                                   + (-gap[:, 0] * nrm[:, 1] + gap[:, 1] * nrm[:, 0])) / size
+
+    # -- Newton ------------------------------------------------------------------------------
+    def newton(self, q: np.ndarray, idx: np.ndarray, *, maxiter: int = MAX_ITER, tol: float = TOLERANCE,
+               polish: bool = True) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
+        """Newton at every position at once from ``q`` (M, n): returns q, the final residuals
+        (M,), convergence (M,) and the iterations taken. Converged positions stop moving;
+        with ``polish`` each takes one more step, kept when it does not raise the residual
+        (the step-by-step walk's rule)."""
+        q = q.copy()
+        limit = tol * self.size
+        m = len(idx)
+        res = np.full(m, np.inf)
+        active = np.arange(m)
+        done = np.zeros(m, dtype=bool)
+        it = 0
+        for it in range(maxiter + 1):
+            phi, a = self.evaluate(q[active], idx[active])
+            r = np.max(np.abs(phi), axis=1)
+            res[active] = r
+            ok = r <= limit
+            bad = ~np.isfinite(r)
+            if ok.any():
+                done[active[ok]] = True
+            keep = ~ok & ~bad
+            if polish and ok.any():
+                self._polish(q, active[ok], idx[active[ok]], a[ok], phi[ok], r[ok])
+            if it == maxiter or not keep.any():
+                break
+            act = active[keep]
+            try:
+                dx = np.linalg.solve(a[keep], -phi[keep][..., None])[..., 0]
+            except np.linalg.LinAlgError:
+                break
+            dx[:, 2::3] /= self.size
+            q[act] += dx
+            active = act
+        return q, res, done, it
+
+    def _polish(self, q, rows, idx, a, phi, res) -> None:
+        try:
+            dx = np.linalg.solve(a, -phi[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            return
+        dx[:, 2::3] /= self.size
+        trial = q[rows] + dx
+        after = np.max(np.abs(self.evaluate(trial, idx, jacobian=False)), axis=1)
+        better = after <= res
+        q[rows[better]] = trial[better]
+
+    def chord(self, q: np.ndarray, idx: np.ndarray, *, maxiter: int = 10, tol: float = TOLERANCE
+              ) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
+        """Newton with the Jacobian of the start kept (inverted once, for every position at
+        once), for seeds already close to the solution; positions it does not bring below
+        ``tol``·size within ``maxiter`` steps go on with :meth:`newton`. Converged positions
+        take one more (polishing) step, kept when it does not raise the residual."""
+        phi, a = self.evaluate(q, idx)
+        try:
+            inv = np.linalg.inv(a)
+        except np.linalg.LinAlgError:
+            return self.newton(q, idx)
+        q = q.copy()
+        limit = tol * self.size
+        m = len(idx)
+        res = np.max(np.abs(phi), axis=1)
+        done = np.zeros(m, dtype=bool)
+        polished = np.zeros(m, dtype=bool)
+        best = q.copy()
+        best_res = np.full(m, np.inf)
+        it = 0
+        for it in range(maxiter + 2):
+            ok = res <= limit
+            # a converged position's first step below the limit is its polish: keep the better
+            newly = ok & ~done
+            best[newly], best_res[newly] = q[newly], res[newly]
+            finished = done & ~polished          # these have just taken their polish step
+            pol = finished & (res <= best_res)
+            best[pol], best_res[pol] = q[pol], res[pol]
+            polished |= finished
+            done |= ok
+            todo = ~polished
+            if not todo.any() or it == maxiter + 1:
+                break
+            dx = (inv @ phi[..., None])[..., 0]
+            dx[:, 2::3] /= self.size
+            q -= np.where(todo[:, None], dx, 0.0)
+            phi = self.evaluate(q, idx, jacobian=False)
+            res = np.where(todo, np.max(np.abs(phi), axis=1), res)
+        out = np.where(polished[:, None], best, q)
+        out_res = np.where(polished, best_res, res)
+        conv = polished.copy()
+        late = np.flatnonzero(~conv)
+        if late.size:
+            qn, rn, cn, _ = self.newton(q[late], idx[late])
+            out[late], out_res[late], conv[late] = qn, rn, cn
+        return out, out_res, conv, it
+
+    def crossing_figure(self, q: np.ndarray, idx: np.ndarray, floor: float = 1e-5) -> np.ndarray:
+        """A stand-in for the condition figure sign(det A)·σ_min/σ_max at poses ``q``, for
+        the walk's crossing test only: the same sign, and the same value wherever the
+        figure could be below ``floor``; elsewhere a lower bound of it (above ``floor``),
+        σ_min ≥ |det A|·((n−1)/‖A‖_F²)^((n−1)/2) (Hong & Pan) and σ_max ≤ ‖A‖_F."""
+        _, a = self.evaluate(q, idx)
+        sign, logdet = np.linalg.slogdet(a)
+        n = self.n
+        log_f = 0.5 * np.log(np.einsum("mij,mij->m", a, a))
+        with np.errstate(all="ignore"):
+            bound = np.exp(logdet + 0.5 * (n - 1) * (np.log(n - 1) - 2.0 * log_f) - log_f)
+        bound = np.where(np.isfinite(bound), bound, 0.0)
+        low = np.flatnonzero(bound < floor)
+        if low.size:
+            sv = np.linalg.svd(a[low], compute_uv=False)
+            bound[low] = sv[:, -1] / sv[:, 0]
+        return sign * bound
+
+    def condition(self, q: np.ndarray, idx: np.ndarray) -> np.ndarray:
+        """sign(det A)·σ_min/σ_max of the scaled Jacobian (as GroupEquations.condition)."""
+        _, a = self.evaluate(q, idx)
+        sv = np.linalg.svd(a, compute_uv=False)
+        return np.sign(np.linalg.det(a)) * sv[:, -1] / sv[:, 0]
+
+
+def _hermite(q0, t0, q1, t1, x0, x1, x):
+    """The cubic with values q0, q1 and slopes t0, t1 at x0, x1, at x (also beyond x1)."""
+    h = x1 - x0
+    s = ((np.asarray(x) - x0) / h)
+    s = s[:, None] if np.ndim(s) == 1 else s
+    h00 = (1 + 2 * s) * (1 - s) ** 2
+    h10 = s * (1 - s) ** 2
+    h01 = s * s * (3 - 2 * s)
+    h11 = s * s * (s - 1)
+    return h00 * q0 + h10 * h * t0 + h01 * q1 + h11 * h * t1
+
+
+def _neighbours(x: np.ndarray, j: np.ndarray, step: float) -> tuple[np.ndarray, np.ndarray]:
+    """Sweep positions around ``j`` at least about half a step apart (for differences)."""
+    last = len(x) - 1
+    lo, hi = np.maximum(j - 1, 0), np.minimum(j + 1, last)
+    for _ in range(8):
+        short = np.abs(x[hi] - x[lo]) < 0.5 * step
+        if not short.any():
+            break
+        lo = np.where(short, np.maximum(lo - 1, 0), lo)
+        hi = np.where(short, np.minimum(hi + 1, last), hi)
+    return lo, hi
+
+
+#: The coarse continuation's largest and first strides, in grid positions.
+MAX_STRIDE = 64
+FIRST_STRIDE = 16
+#: A coarse step is accepted when Newton converges within this many iterations and its
+#: corrector moves at most CORRECTOR × the step's own movement (else the step is halved).
+COARSE_ITER = 5
+CORRECTOR = 0.3
+#: ... and the next stride is doubled when the corrector moved at most GROW × that.
+GROW = 0.1
+#: The coarse nodes are only seeds (the batched solve polishes them): Newton stops there at
+#: this residual (× size).
+COARSE_TOLERANCE = 1e-9
+#: A position of the batched solve may lie at most SEED × its coarse interval's movement
+#: from its interpolated seed (else: another branch may have been found; fall back).
+SEED = 0.2
+
+
+def walk(group: CompiledGroup, sweep: np.ndarray, x: np.ndarray, q0: np.ndarray, step: float,
+         jump_ratio: float) -> np.ndarray | None:
+    """Poses (len(sweep), n) at the grid positions ``sweep`` (drive values ``x``, monotone,
+    the first already solved: ``q0``), or None when the fast continuation is not sure (the
+    caller then walks step by step)."""
+    m = len(sweep)
+    n = group.n
+    out = np.empty((m, n))
+    out[0] = q0
+    if m == 1:
+        return out
+    size = group.size
+    cols = group.cols
+    scale = np.ones(n)
+    scale[2::3] = size          # compare poses in metres: angles × size
+
+    limit = COARSE_TOLERANCE * size
+
+    def settle(q: np.ndarray, idx: np.ndarray):
+        """Newton (no polish) at a few positions: q, convergence, iterations and the
+        Jacobian at the returned q."""
+        it = 0
+        for it in range(COARSE_ITER + 1):
+            phi, a = group.evaluate(q, idx)
+            r = np.max(np.abs(phi), axis=1)
+            ok = r <= limit
+            if ok.all() or it == COARSE_ITER or not np.isfinite(r).all():
+                return q, ok, it, a
+            try:
+                dx = np.linalg.solve(a, -phi[..., None])[..., 0]
+            except np.linalg.LinAlgError:
+                return q, ok & False, it, a
+            dx[:, 2::3] /= size
+            q = q + np.where(ok[:, None], 0.0, dx)
+        return q, ok, it, a
+
+    def tangents(j: np.ndarray, q: np.ndarray, a: np.ndarray) -> np.ndarray | None:
+        lo, hi = _neighbours(x, j, step)
+        both = group.evaluate(np.concatenate([q, q]), np.concatenate([sweep[hi], sweep[lo]]), jacobian=False)
+        dphi = (both[:len(j)] - both[len(j):]) / (x[hi] - x[lo])[:, None]
+        try:
+            t = np.linalg.solve(a, -dphi[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            return None
+        if not np.isfinite(t).all():
+            return None
+        t[:, 2::3] /= size
+        return t
+
+    # 1. adaptive coarse continuation; each step tries the stride, twice and three times it at once
+    _, a0 = group.evaluate(q0[None, :], sweep[:1])
+    t0 = tangents(np.array([0]), q0[None, :], a0)
+    if t0 is None:
+        return None
+    nodes, qs, ts = [0], [q0], [t0[0]]
+    stride = FIRST_STRIDE
+    j = 0
+    while j < m - 1:
+        ks = np.unique(np.minimum(j + stride * np.array([1, 2, 3]), m - 1))
+        hk = (x[ks] - x[j])[:, None]
+        if len(nodes) > 1:     # third order: the Hermite cubic of the last two nodes, extended
+            guess = _hermite(qs[-2], ts[-2], qs[-1], ts[-1], x[nodes[-2]], x[j], x[ks])
+        else:
+            guess = qs[-1] + hk * ts[-1]
+        q, conv, it, a = settle(guess, sweep[ks])
+        moved = np.max(np.abs((q - qs[-1]) * scale), axis=1)
+        corr = np.max(np.abs((q - guess) * scale), axis=1)
+        good = conv & (corr <= CORRECTOR * moved + 1e-9 * size)
+        take = int(np.argmin(good)) if not good.all() else len(ks)    # the accepted prefix
+        if take == 0:
+            if stride == 1:
+                return None
+            stride = max(stride // 2, 1)
+            continue
+        t = tangents(ks[:take], q[:take], a[:take])
+        if t is None:
+            return None
+        nodes += list(ks[:take])
+        qs += list(q[:take])
+        ts += list(t)
+        stride = int(ks[take - 1] - j)
+        if take == len(ks) and corr[take - 1] <= GROW * moved[take - 1] + 1e-9 * size:
+            stride *= 2
+        stride = max(1, min(stride, MAX_STRIDE))
+        j = int(ks[take - 1])
+    nodes = np.array(nodes)
+    qs = np.array(qs)
+    ts = np.array(ts)
+
+    # 2. batched Newton everywhere, from cubic Hermite seeds
+    seg = np.clip(np.searchsorted(nodes, np.arange(m), side="right") - 1, 0, len(nodes) - 2)
+    a, b = nodes[seg], nodes[seg + 1]
+    seed = _hermite(qs[seg], ts[seg], qs[seg + 1], ts[seg + 1], x[a][:, None], x[b][:, None], x[:, None])
+    seed[nodes] = qs
+    q, res, conv, _ = group.chord(seed[1:], sweep[1:])     # the nodes are polished here too
+    if not conv.all():
+        return None
+    out[1:] = q
+
+    # 3. the walk's acceptance tests
+    interval = np.max(np.abs((qs[1:] - qs[:-1]) * scale), axis=1)     # per coarse interval
+    off = np.max(np.abs((out - seed) * scale), axis=1)
+    if np.any(off > SEED * interval[seg] + 1e-9 * size):
+        return None
+    moved = np.max(np.abs(np.diff(out[:, cols], axis=0)), axis=1)
+    before = np.concatenate([[0.0], moved[:-1]])
+    if np.any((moved > 0.01 * size) & (moved > jump_ratio * before)):
+        return None
+    return out

@@ -1,0 +1,168 @@
+"""How far a solved position is from its group's singular position: a local search.
+
+:func:`distance` answers the near-singular warning's question — how many degrees (metres)
+of drive lie between position i of a solved :class:`~plans.kinematics.state.Motion` and the
+nearest singular (limit or crossing) position of one group — without analysing the whole
+mechanism again for every trial value. Only the groups up to the one asked about are
+posed, and only at the trial drive values, continued from the pose at position i:
+
+* class II groups take the closed-form assembly branch the motion took at i;
+* class III/IV groups are continued from their pose at i by Newton's method in steps of at
+  most the walk's step (1° or 1/200 of the mechanism's size), each trial continuing from
+  the nearest value already posed.
+
+The search is the secant method on the squared condition figure c² (c ~ √δ at a limit
+position, c ~ δ where branches cross); a trial past a limit position (the group no longer
+assembles) or past a sign change of c is stepped back towards the last good value.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..scene import LINEAR_STEPS_PER_SIZE, STEP_DEG
+from ..structure import ComplexGroup
+from .compiled import CompiledGroup
+from .generic import GroupEquations
+from .groups import candidates, conditioning
+from .state import LinkState, Motion
+
+__all__ = ["distance", "LocalPoser"]
+
+
+class LocalPoser:
+    """Poses of the links of the groups up to ``group`` at drive values near position i."""
+
+    def __init__(self, motion: Motion, group: str, i: int):
+        self.mech = mech = motion.mechanism
+        groups = list(motion.structure.groups)
+        last = next(k for k, g in enumerate(groups) if g.name == group)
+        self.groups = groups[:last + 1]
+        self.target = self.groups[-1]
+        self.step = STEP_DEG if mech.drive.kind == "rotary" else mech.size / LINEAR_STEPS_PER_SIZE
+        self.tol = 1e-12 * mech.size
+        x0 = float(motion.values[i])
+        here = {name: s.take(np.array([i])) for name, s in motion.links.items()}
+        # the class II branches taken at i, and the complex groups' poses there
+        self.choice: dict[str, int] = {}
+        self.eqs: dict[str, GroupEquations] = {}
+        states = self._drive(x0)
+        pose: dict[str, np.ndarray] = {}
+        for g in self.groups:
+            if isinstance(g, ComplexGroup):
+                eq = self.eqs[g.name] = GroupEquations(mech, g.links, g.pairs)
+                pose[g.name] = eq.pose(here)[0]
+                for name in g.links:
+                    states[name] = LinkState(here[name].theta, here[name].origin)
+                continue
+            options = candidates(g, mech, states, self.tol)
+            cost = [float(np.sum((o.m.origin - here[g.m].origin) ** 2) + np.sum((o.n.origin - here[g.n].origin) ** 2)
+                          + mech.size ** 2 * (_turn(o.m.theta - here[g.m].theta) ** 2
+                                              + _turn(o.n.theta - here[g.n].theta) ** 2))
+                    for o in options]
+            k = int(np.argmin(cost))
+            self.choice[g.name] = k
+            states[g.m], states[g.n] = options[k].m, options[k].n
+        self.cache: list[tuple[float, dict[str, np.ndarray], dict[str, LinkState]]] = [(x0, pose, states)]
+        self.sign = np.sign(self._condition(states))
+
+    def _drive(self, x: float) -> dict[str, LinkState]:
+        from .solve import drive_states
+        return drive_states(self.mech, np.array([x]))
+
+    def _condition(self, states) -> float:
+        g = self.target
+        if isinstance(g, ComplexGroup):
+            from .solve import group_condition
+            return float(group_condition(self.mech, g, states)[0])
+        return float(conditioning(g, self.mech, states)[0])
+
+    def _pose_at(self, x: float, start: dict[str, np.ndarray]):
+        """All states at x, the complex groups continued from ``start`` by one Newton solve
+        each (None when a group does not assemble)."""
+        mech = self.mech
+        states = self._drive(x)
+        pose = {}
+        for g in self.groups:
+            if isinstance(g, ComplexGroup):
+                eq = self.eqs[g.name]
+                known = {n: s for n, s in states.items() if n not in eq.col}
+                cg = CompiledGroup(mech, eq.links, eq.pairs, known)
+                q, _, conv, _ = cg.newton(start[g.name][None, :], np.array([0]))
+                if not conv[0]:
+                    return None
+                pose[g.name] = q[0]
+                for name, c in eq.col.items():
+                    states[name] = LinkState(q[:, c + 2], q[:, c:c + 2])
+                continue
+            o = candidates(g, mech, states, self.tol)[self.choice[g.name]]
+            if not bool(o.valid[0]):
+                return None
+            states[g.m], states[g.n] = o.m, o.n
+        return pose, states
+
+    def condition(self, x: float) -> float | None:
+        """The target group's condition figure at drive value x, or None when x cannot be
+        reached from position i without the group falling apart or passing a singular
+        position."""
+        x_near, pose, states = min(self.cache, key=lambda c: abs(c[0] - x))
+        n_steps = max(1, int(np.ceil(abs(x - x_near) / self.step - 1e-9)))
+        prev = pose
+        prev_x = x_near
+        for k in range(1, n_steps + 1):
+            xk = x_near + (x - x_near) * k / n_steps
+            got = self._pose_at(xk, prev)
+            if got is None:
+                return None
+            moved = max((np.max(np.abs(got[0][n] - prev[n])) for n in prev), default=0.0)
+            if moved > 0.05 * self.mech.size and moved > 0.05 * self.mech.size * abs(xk - prev_x) / self.step:
+                return None              # the branch jumped
+            prev, prev_x, states = got[0], xk, got[1]
+            c = self._condition(states)
+            if np.sign(c) != self.sign or not np.isfinite(c):
+                return None
+            self.cache.append((xk, prev, states))
+        return self._condition(states)
+
+
+def _turn(d: np.ndarray) -> float:
+    return float(np.arctan2(np.sin(d), np.cos(d))[0])
+
+
+def distance(motion: Motion, group: str, i: int) -> float | None:
+    """How far the drive is from the singular position of ``group`` nearest position ``i``
+    of ``motion`` (degrees for a crank, metres for a slider), or None when none is found
+    nearby. Secant steps on the squared condition figure c², which falls to zero linearly
+    at a limit position and quadratically where branches cross; a step that lands past a
+    limit position (or past c's sign change) is halved back towards the last good value."""
+    mech = motion.mechanism
+    h = 0.05 if mech.drive.kind == "rotary" else 1e-4 * mech.size
+    poser = LocalPoser(motion, group, i)
+
+    def f(x: float) -> float | None:
+        c = poser.condition(x)
+        return None if c is None else c * c
+
+    start = float(motion.values[i])
+    x0, f0 = start, float(motion.sines[group][i]) ** 2
+    x1 = start + h
+    f1 = f(x1)
+    if f1 is None:
+        x1, f1 = start - h, f(start - h)
+    for _ in range(16):
+        if f1 is None or f1 == f0:
+            return None
+        x2 = x1 - f1 * (x1 - x0) / (f1 - f0)
+        if abs(x2 - start) > 20.0 * h + 10.0 * abs(x1 - start):
+            return None
+        f2 = f(x2)
+        tries = 0
+        while f2 is None and tries < 30:      # past a limit position: step back towards x1
+            x2 = 0.5 * (x1 + x2)
+            f2, tries = f(x2), tries + 1
+        if f2 is None:
+            return None
+        if abs(x2 - x1) < 1e-6 * h:
+            return abs(x2 - start)
+        x0, f0, x1, f1 = x1, f1, x2, f2
+    return abs(x1 - start)
