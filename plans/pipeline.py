@@ -154,7 +154,7 @@ def report(scene: Scene, motion: Motion, scales: Scales, solutions: dict | None 
     key = "angle" if mech.drive.kind == "rotary" else "displacement"
     positions = []
     ic = centres(motion) if ic is None and motion.order >= 1 else ic
-    solutions = triads(motion) if solutions is None else solutions
+    solutions = special.triads(motion) if solutions is None else solutions
     special_pts = {g.name: triad.points for g, triad in solutions.items()}
     r = {p: motion.position(p) for p in mech.sketch}
     v = {p: motion.velocity(p) for p in mech.sketch} if motion.order >= 1 else {}
@@ -219,18 +219,6 @@ def _special(p, i: int) -> dict:
     return out
 
 
-def triads(motion: Motion) -> dict:
-    """Every class III group solved a second, independent way, through its special points
-    (group → :class:`~plans.kinematics.special.TriadSolution`); empty for other mechanisms."""
-    out = {}
-    for g in motion.structure.groups:
-        if isinstance(g, ComplexGroup) and special.supports(g):
-            out[g] = special.solve_triad(g, motion.mechanism, motion.links, order=motion.order) \
-                if motion.order >= 1 else special.TriadSolution({}, special.special_points(g, motion.mechanism,
-                                                                                           motion.links))
-    return out
-
-
 def render_scene(path: str | Path, style: Style = Style()) -> Rendered:
     """Compute every file of a scene file (nothing is written); the files are named after the
     file's stem.
@@ -251,10 +239,10 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
         scales = _scales(scene, motion, rest)
     except PlansError as exc:
         raise exc.in_file(where) if where and hasattr(exc, "in_file") else exc
-    solutions = triads(motion)
+    solutions = special.triads(motion)
     for g, triad in solutions.items():
-        worst = _disagreement(motion, triad)
-        if worst > CROSS_CHECK_RTOL:
+        worst = special.disagreement(motion, triad)
+        if worst > special.CROSS_CHECK_RTOL:
             raise PlansError(f"{path}: group {g.name}: the special-point solution and the Jacobian solution differ "
                              f"by {worst:.2e} (relative) — please report this scene")
     files: dict[str, str] = {}
@@ -344,29 +332,6 @@ def _koshel(motion: Motion, i: int, g: ComplexGroup, still: bool, *, title: str,
                             style=style), why
     heading = Heading(title, f"Koshel's method: centre P{g.base} and velocity plan in an uncertain scale", label)
     return draw_koshel(sheet, heading, ident=ident, style=style), ""
-
-
-#: Largest relative difference allowed between the two solutions of a class III group.
-CROSS_CHECK_RTOL = 1e-9
-
-
-def _disagreement(motion: Motion, triad) -> float:
-    """Largest difference between the special-point and the Jacobian solutions of a group's
-    links (ω·size and v of every point; ε·size and a), relative to the largest such value."""
-    worst = 0.0
-    mech = motion.mechanism
-    for link, s in triad.links.items():
-        ref = motion.links[link]
-        pts = [ref.point(x) for x in mech.links[link].local.values()]
-        kinds = [[(ref.omega[:, None] * mech.size, s.omega[:, None] * mech.size)]
-                 + [(ref.velocity(x), s.velocity(x)) for x in pts]]
-        if motion.order >= 2:
-            kinds.append([(ref.epsilon[:, None] * mech.size, s.epsilon[:, None] * mech.size)]
-                         + [(ref.acceleration(x), s.acceleration(x)) for x in pts])
-        for pairs in kinds:
-            scale = max(float(np.max(np.abs(a))) for a, _ in pairs) or 1.0
-            worst = max(worst, max(float(np.max(np.abs(a - b))) for a, b in pairs) / scale)
-    return worst
 
 
 def _similarity(motion: Motion, plan, i: int, tol: float = 1e-9) -> list[str]:

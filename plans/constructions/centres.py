@@ -21,7 +21,6 @@ import numpy as np
 from ..kinematics import Motion, special
 from ..kinematics.centres import Centres
 from ..scene import FRAME
-from ..structure import ComplexGroup
 from .scales import fitting_scale
 from .scheme import Scheme, scheme
 
@@ -159,9 +158,7 @@ def _special_points(motion: Motion, i: int) -> dict[str, tuple[np.ndarray, np.nd
     """The special points of every class III group at position i: label → (S, v_S)."""
     out = {}
     states = {name: s.take(np.array([i])) for name, s in motion.links.items()}
-    for g in motion.structure.groups:
-        if not (isinstance(g, ComplexGroup) and special.supports(g)):
-            continue
+    for g in special.triad_groups(motion.structure):
         for p in special.special_points(g, motion.mechanism, states):
             if abs(float(p.sin[0])) < 1e-9:
                 continue

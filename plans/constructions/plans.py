@@ -164,7 +164,7 @@ def relations(motion: Motion) -> tuple[Relation, ...]:
     constructed: set[tuple[str, str]] = set()
     for g in structure.groups:
         name = g.name
-        if isinstance(g, ComplexGroup):
+        if g.klass > 2:            # class III and IV: the group's own relations
             out += _complex_relations(g)
             if special.supports(g):
                 constructed |= {(g.base, p.point) for p in g.inner if p.kind == "R"}
@@ -399,9 +399,8 @@ def _plan(motion: Motion, i: int, mu: float, kind: str) -> Plan:
             _rigid(b, rel, sym)
         else:
             _slide(b, rel, sym, pole)
-    for g in motion.structure.groups:
-        if isinstance(g, ComplexGroup) and special.supports(g):
-            _special(b, g, sym)
+    for g in special.triad_groups(motion.structure):
+        _special(b, g, sym)
     for name in mech.sketch:  # absolute vectors of every moving scene point
         link = motion.carrier(name)
         if link == FRAME:

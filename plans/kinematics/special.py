@@ -40,7 +40,13 @@ from ..structure import ComplexGroup, Rod
 from .state import J, LinkState, cross
 
 __all__ = ["Axis", "SpecialPoint", "TriadSolution", "axes", "special_points", "solve_triad", "condition",
-           "supports", "pick", "known_acceleration"]
+           "supports", "triad_groups", "triads", "disagreement", "CROSS_CHECK_RTOL", "pick", "known_acceleration"]
+
+#: Largest relative difference allowed between the special-point and the Jacobian solutions of
+#: a class III group: both are exact to rounding, which near a singular position (|sin| ~ 1e-2,
+#: the warning bound) amplifies eps to ~1e-12; 1e-9 leaves a thousandfold margin and still
+#: catches any wrong term (a missing Coriolis or normal term is of order 1).
+CROSS_CHECK_RTOL = 1e-9
 
 States = Mapping[str, LinkState]
 
@@ -87,6 +93,42 @@ class TriadSolution:
 def supports(g: ComplexGroup) -> bool:
     """True for class III groups whose rods all have a defined axis (no P–P rod)."""
     return g.base is not None and all(r.form != "PP" for r in g.rods)
+
+
+def triad_groups(structure) -> tuple[ComplexGroup, ...]:
+    """The groups of ``structure`` that have special points (see :func:`supports`), in order;
+    callers ask this instead of which class a group is."""
+    return tuple(g for g in structure.groups if isinstance(g, ComplexGroup) and supports(g))
+
+
+def triads(motion) -> dict[ComplexGroup, TriadSolution]:
+    """Every class III group of a solved motion solved a second, independent way, through its
+    special points (only the special points when the motion has positions only)."""
+    out = {}
+    for g in triad_groups(motion.structure):
+        out[g] = solve_triad(g, motion.mechanism, motion.links, order=motion.order) if motion.order >= 1 \
+            else TriadSolution({}, special_points(g, motion.mechanism, motion.links))
+    return out
+
+
+def disagreement(motion, triad: TriadSolution) -> float:
+    """Largest difference between the special-point solution ``triad`` and the Jacobian
+    solution in ``motion`` of a group's links (ω·size and v of every point; ε·size and a),
+    relative to the largest such value."""
+    worst = 0.0
+    mech = motion.mechanism
+    for link, s in triad.links.items():
+        ref = motion.links[link]
+        pts = [ref.point(x) for x in mech.links[link].local.values()]
+        kinds = [[(ref.omega[:, None] * mech.size, s.omega[:, None] * mech.size)]
+                 + [(ref.velocity(x), s.velocity(x)) for x in pts]]
+        if motion.order >= 2:
+            kinds.append([(ref.epsilon[:, None] * mech.size, s.epsilon[:, None] * mech.size)]
+                         + [(ref.acceleration(x), s.acceleration(x)) for x in pts])
+        for pairs in kinds:
+            scale = max(float(np.max(np.abs(a))) for a, _ in pairs) or 1.0
+            worst = max(worst, max(float(np.max(np.abs(a - b))) for a, b in pairs) / scale)
+    return worst
 
 
 def _unit(v: np.ndarray) -> np.ndarray:
