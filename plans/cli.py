@@ -15,6 +15,7 @@ from .errors import OutputError, PlansError, one_line
 from .export import DEFAULT_DPI, FORMATS, MAX_DPI, MIN_DPI, convert, parse_dpi, parse_formats, require_cairo
 from .output import check_folder, write_files
 from .pipeline import Rendered, render_scene
+from .scene import DriveKind
 
 __all__ = ["main"]
 
@@ -22,7 +23,7 @@ __all__ = ["main"]
 def _table(r: Rendered) -> str:
     m = r.motion
     mech = m.mechanism
-    unit = "deg" if mech.drive.kind == "rotary" else "m"
+    unit = "deg" if mech.drive.kind == DriveKind.ROTARY else "m"
     lines = [f"{r.stem}: {m.structure.formula}   μl = {r.scales.mu_l:g} m/mm"
              + (f", μV = {r.scales.mu_v:g} (m/s)/mm" if r.scales.mu_v else "")
              + (f", μa = {r.scales.mu_a:g} (m/s²)/mm" if r.scales.mu_a else "")]

@@ -15,7 +15,7 @@ from typing import Mapping
 import numpy as np
 
 from .errors import SceneError
-from .scene import FRAME, Scene, Slider
+from .scene import FRAME, Scene, Slider, DriveKind
 
 __all__ = ["Link", "Revolute", "Prismatic", "DriveSpec", "Mechanism", "build_mechanism", "LENGTH_RTOL"]
 
@@ -95,7 +95,7 @@ class DriveSpec:
     for a slider driven along a frame guide."""
 
     link: str
-    kind: str
+    kind: DriveKind
     values: tuple[float, ...]
     speed: float
     rate: float
@@ -259,9 +259,9 @@ def _drive(scene: Scene, links: Mapping[str, Link], prismatics: tuple[Prismatic,
            sketch: Mapping[str, np.ndarray]) -> DriveSpec:
     d = scene.drive
     link = links[d.link]
-    if d.kind == "linear":
+    if d.kind == DriveKind.LINEAR:
         guide = next(p for p in prismatics if p.slider == d.link and p.guide == FRAME)
-        return DriveSpec(link=d.link, kind="linear", values=d.values, speed=d.speed, rate=d.rate, guide=guide)
+        return DriveSpec(link=d.link, kind=DriveKind.LINEAR, values=d.values, speed=d.speed, rate=d.rate, guide=guide)
     frame_points = set(links[FRAME].points)
     pivots = [p for p in link.points if p in frame_points]
     if len(pivots) != 1:
@@ -274,5 +274,5 @@ def _drive(scene: Scene, links: Mapping[str, Link], prismatics: tuple[Prismatic,
                          "(its angle is measured pivot → that point)", key=f"links.{d.link}")
     tip = others[0]
     arm = sketch[tip] - sketch[pivot]
-    return DriveSpec(link=d.link, kind="rotary", values=d.values, speed=d.speed, rate=d.rate, pivot=pivot, tip=tip,
+    return DriveSpec(link=d.link, kind=DriveKind.ROTARY, values=d.values, speed=d.speed, rate=d.rate, pivot=pivot, tip=tip,
                      sketch_value=math.degrees(math.atan2(arm[1], arm[0])))

@@ -12,6 +12,7 @@ import math
 import re
 import reprlib
 import tomllib
+from enum import StrEnum
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping
@@ -97,25 +98,32 @@ class Slider:
         return f"sliders[{self.index}]"
 
 
+class DriveKind(StrEnum):
+    """How the drive moves: a crank turning about a frame pivot, or a slider on a frame guide."""
+
+    ROTARY = "rotary"
+    LINEAR = "linear"
+
+
 @dataclass(frozen=True)
 class Drive:
     """The driving link and its law of motion.
 
-    ``kind`` is ``"rotary"`` (``values`` are angles in degrees, ``speed`` ω in rad/s,
-    ``rate`` ε in rad/s², CCW positive) or ``"linear"`` (a slider on the frame; ``values``
+    ``kind`` is :attr:`DriveKind.ROTARY` (``values`` are angles in degrees, ``speed`` ω in rad/s,
+    ``rate`` ε in rad/s², CCW positive) or :attr:`DriveKind.LINEAR` (a slider on the frame; ``values``
     are displacements in metres along its guide from the sketch position, ``speed`` in
     m/s, ``rate`` in m/s²).
     """
 
     link: str
-    kind: str
+    kind: DriveKind
     values: tuple[float, ...]
     speed: float
     rate: float
 
     @property
     def unit(self) -> str:
-        return "deg" if self.kind == "rotary" else "m"
+        return "deg" if self.kind == DriveKind.ROTARY else "m"
 
 
 @dataclass(frozen=True)
@@ -465,14 +473,14 @@ def _drive(table: Mapping[str, Any], links: Mapping[str, Any], sliders: tuple[Sl
         raise SceneError("mixes a rotary drive (angle, omega) with a linear one (displacement, velocity)",
                          key="drive")
     if "displacement" in table or "velocity" in table:
-        kind, pos_key, speed_key, rate_key = "linear", "displacement", "velocity", "acceleration"
+        kind, pos_key, speed_key, rate_key = DriveKind.LINEAR, "displacement", "velocity", "acceleration"
         if not any(s.link == link and s.on == FRAME for s in sliders):
             raise SceneError(f"a linear drive needs link {link} to slide on the frame: add a [[sliders]] "
                              f'with link = "{link}", on = "0"', key="drive.link")
         pos_bound, pos_why = MAX_COORD_M, _COORD_WHY
         bounds = ((MAX_SPEED, "m/s"), (MAX_ACCELERATION, "m/s²"))
     else:
-        kind, pos_key, speed_key, rate_key = "rotary", "angle", "omega", "epsilon"
+        kind, pos_key, speed_key, rate_key = DriveKind.ROTARY, "angle", "omega", "epsilon"
         pos_bound, pos_why = MAX_ANGLE_DEG, "° (about 2800 turns; beyond that a double cannot hold the angle exactly)"
         bounds = ((MAX_OMEGA, "rad/s"), (MAX_EPSILON, "rad/s²"))
     if pos_key not in table:
@@ -506,12 +514,12 @@ def _rate(value: Any, key: str, bound: float, unit: str) -> float:
                                                 "far from overflow)")
 
 
-def _walk(kind: str, values: tuple[float, ...], points: Mapping[str, tuple[float, float]], key: str) -> None:
+def _walk(kind: DriveKind, values: tuple[float, ...], points: Mapping[str, tuple[float, float]], key: str) -> None:
     """Refuse drive values whose continuation walk from the sketch would take more than
     MAX_WALK_STEPS steps (kinematics/solve.py ``_grid``: a crank's walk starts within half a turn
     of the values' median and steps 1°; a slider's starts at 0 and steps size/200)."""
     lo, hi = min(values), max(values)
-    if kind == "rotary":
+    if kind == DriveKind.ROTARY:
         step, unit = STEP_DEG, "°"
         steps = (hi - lo + 360.0) / step
     else:
@@ -519,10 +527,10 @@ def _walk(kind: str, values: tuple[float, ...], points: Mapping[str, tuple[float
         step, unit = size / LINEAR_STEPS_PER_SIZE, " m"
         steps = (max(hi, 0.0) - min(lo, 0.0)) / step
     if steps > MAX_WALK_STEPS:
-        reach = (MAX_WALK_STEPS - (360.0 if kind == "rotary" else 0.0)) * step
+        reach = (MAX_WALK_STEPS - (360.0 if kind == DriveKind.ROTARY else 0.0)) * step
         raise SceneError(f"values from {lo:g} to {hi:g}{unit} need a walk of {steps:.3g} steps of {step:.3g}{unit} "
                          f"from the sketch (the solver follows the mechanism step by step); keep them within a span of "
-                         f"{reach:.4g}{unit}" + ("" if kind == "rotary" else " including 0 (the sketch)"), key=key)
+                         f"{reach:.4g}{unit}" + ("" if kind == DriveKind.ROTARY else " including 0 (the sketch)"), key=key)
 
 
 def _lengths(table: Mapping[str, Any], points: Mapping[str, Any],

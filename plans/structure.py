@@ -27,7 +27,7 @@ from itertools import combinations
 
 from .errors import StructureError
 from .model import Mechanism, Prismatic
-from .scene import FRAME
+from .scene import FRAME, DriveKind
 
 __all__ = ["Joint", "Group", "Pair", "Rod", "ComplexGroup", "Structure", "analyse_structure", "FORMS"]
 
@@ -184,7 +184,7 @@ def _no_split(ix: "_Index", known: set[str], remaining: set[str]) -> str:
 
 def _check_original_mechanism(mech: Mechanism) -> None:
     d = mech.drive
-    if d.kind == "rotary":
+    if d.kind == DriveKind.ROTARY:
         return  # the pivot on the frame is checked when the model is built
     if not any(p.slider == d.link and p.guide == FRAME for p in mech.prismatics):
         raise StructureError(f"the driving slider {d.link} has no guide on the frame", key="drive.link")

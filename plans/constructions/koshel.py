@@ -24,7 +24,7 @@ import numpy as np
 from ..errors import ConstructionError
 from ..kinematics import Motion, special
 from ..kinematics.state import J
-from ..scene import FRAME
+from ..scene import FRAME, DriveKind
 from ..structure import ComplexGroup
 from .centres import REACH, CentreMark, CentreRay, _segment, _special_points
 from .plans import AT_REST, EXTENSION_MM, UNCERTAIN_MM, ConstructionLine, Plan, PlanPoint
@@ -311,7 +311,7 @@ def _steps(motion, i, g, plan, segment, mu, pname, known, moving, drawn, resting
                f"longest of the series 1, 1.5, 2, 2.5, 3, 4, 5, 6, 8 mm × a power of ten, up to {UNCERTAIN_MM:g} mm, "
                f"that keeps the whole plan within {KOSHEL_MAX_MM:g} × {KOSHEL_MAX_MM:g} mm.")
     drive = mech.drive
-    crank = drive.kind == "rotary" and drive.link == driven.outer.b and drive.pivot is not None
+    crank = drive.kind == DriveKind.ROTARY and drive.link == driven.outer.b and drive.pivot is not None
     o = drive.pivot if crank else None
     along = f"⊥ {o}{y}" if crank else f"along v_{{{y}}} (link {driven.outer.b})"
     out.append(f"3) {y.lower()}: V_{{{y}}} = V_{{{x}}} + V_{{{y}{x}}}, V_{{{y}{x}}} ⊥ {y}{x} (a line through "

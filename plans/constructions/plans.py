@@ -65,7 +65,7 @@ import numpy as np
 from ..errors import ConstructionError
 from ..kinematics import Motion, special
 from ..kinematics.state import J
-from ..scene import FRAME
+from ..scene import FRAME, DriveKind
 from ..structure import ComplexGroup
 
 __all__ = ["PlanPoint", "PlanVector", "ConstructionLine", "Plan", "Relation", "relations",
@@ -157,7 +157,7 @@ def relations(motion: Motion) -> tuple[Relation, ...]:
     mech, structure = motion.mechanism, motion.structure
     out: list[Relation] = []
     d = mech.drive
-    if d.kind == "rotary":
+    if d.kind == DriveKind.ROTARY:
         out.append(Relation("rigid", d.link, d.tip, d.pivot, group="I"))
     else:
         out.append(Relation("slide", d.link, d.guide.label, "", group="I", other=FRAME))

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..kinematics import Motion
-from ..scene import FRAME
+from ..scene import FRAME, DriveKind
 
 __all__ = ["Scheme", "Block", "Guide", "Arc", "scheme", "BLOCK_MM", "HEAD_MM", "SENSE_HEAD_MM"]
 
@@ -140,7 +140,7 @@ def scheme(motion: Motion, i: int, mu_l: float, *, senses: bool = False) -> Sche
     d = mech.drive
     phi = reference = None
     arcs: list[Arc] = []
-    if d.kind == "rotary":
+    if d.kind == DriveKind.ROTARY:
         phi = float(motion.values[i])
         c, tip = np.asarray(points[d.pivot]), np.asarray(points[d.tip])
         crank = float(np.degrees(np.arctan2(*(tip - c)[::-1])))
@@ -152,7 +152,7 @@ def scheme(motion: Motion, i: int, mu_l: float, *, senses: bool = False) -> Sche
         arcs += _sense_arcs(motion, i, points, blocks)
     return Scheme(mu_l=mu_l, points=points, links=links, joints=joints, supports=supports,
                   blocks=tuple(blocks), guides=tuple(guides),
-                  drive_pivot=d.pivot if d.kind == "rotary" else None, omega=d.speed, epsilon=d.rate,
+                  drive_pivot=d.pivot if d.kind == DriveKind.ROTARY else None, omega=d.speed, epsilon=d.rate,
                   phi=phi, reference=reference if reference is not None else 0.0, dots=dots, arcs=tuple(arcs))
 
 

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..scene import LINEAR_STEPS_PER_SIZE, STEP_DEG
+from ..scene import LINEAR_STEPS_PER_SIZE, STEP_DEG, DriveKind
 from ..structure import ComplexGroup
 from .compiled import CompiledGroup
 from .generic import GroupEquations
@@ -39,7 +39,7 @@ class LocalPoser:
         last = next(k for k, g in enumerate(groups) if g.name == group)
         self.groups = groups[:last + 1]
         self.target = self.groups[-1]
-        self.step = STEP_DEG if mech.drive.kind == "rotary" else mech.size / LINEAR_STEPS_PER_SIZE
+        self.step = STEP_DEG if mech.drive.kind == DriveKind.ROTARY else mech.size / LINEAR_STEPS_PER_SIZE
         self.tol = 1e-12 * mech.size
         x0 = float(motion.values[i])
         here = {name: s.take(np.array([i])) for name, s in motion.links.items()}
@@ -136,7 +136,7 @@ def distance(motion: Motion, group: str, i: int) -> float | None:
     at a limit position and quadratically where branches cross; a step that lands past a
     limit position (or past c's sign change) is halved back towards the last good value."""
     mech = motion.mechanism
-    h = 0.05 if mech.drive.kind == "rotary" else 1e-4 * mech.size
+    h = 0.05 if mech.drive.kind == DriveKind.ROTARY else 1e-4 * mech.size
     poser = LocalPoser(motion, group, i)
 
     def f(x: float) -> float | None:
