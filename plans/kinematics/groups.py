@@ -26,7 +26,7 @@ import numpy as np
 
 from ..model import Mechanism
 from ..structure import Group, Joint
-from .state import J, LinkState, cross, rotate
+from .state import J, LinkState, _rotated, cos_sin, cross
 
 __all__ = ["Candidate", "candidates", "conditioning", "velocities", "accelerations", "SINGULAR_REASON"]
 
@@ -63,15 +63,40 @@ def _pin(mech: Mechanism, states: States, joint: Joint) -> np.ndarray:
 
 
 def _place(la: np.ndarray, lb: np.ndarray, a: np.ndarray, b: np.ndarray) -> LinkState:
-    """The pose putting local points la, lb at world points a, b (|ab| = |la lb|)."""
+    """The pose putting local points la, lb at world points a, b (|ab| = |la lb|); cos θ and
+    sin θ follow from the unit vectors of ab and of la lb, without trigonometry."""
     d = b - a
-    theta = np.arctan2(d[:, 1], d[:, 0]) - np.arctan2(lb[1] - la[1], lb[0] - la[0])
-    return LinkState(theta, a - rotate(la, theta))
+    dx, dy = d[:, 0], d[:, 1]
+    ex, ey = float(lb[0] - la[0]), float(lb[1] - la[1])
+    theta = np.arctan2(dy, dx)
+    theta -= np.arctan2(ey, ex)
+    el = float(np.hypot(ex, ey))
+    ex, ey = ex / el, ey / el
+    r = np.sqrt(dx * dx + dy * dy)
+    r = 1.0 / np.where(r > 0.0, r, 1.0)
+    c = (dx * ex + dy * ey) * r
+    sn = (dy * ex - dx * ey) * r
+    return LinkState(theta, _rotated(la, c, sn, base=a, sign=-1.0)).seeded(c, sn)
 
 
-def _fixed_angle(theta: np.ndarray, local: np.ndarray, x: np.ndarray) -> LinkState:
-    """The pose with rotation θ putting local point ``local`` at world point x."""
-    return LinkState(theta, x - rotate(local, theta))
+def _fixed_angle(theta: np.ndarray, local: np.ndarray, x: np.ndarray, cs: tuple | None = None) -> LinkState:
+    """The pose with rotation θ putting local point ``local`` at world point x (``cs``: cos θ,
+    sin θ when known)."""
+    c, sn = cos_sin(theta) if cs is None else cs
+    return LinkState(theta, _rotated(local, c, sn, base=x, sign=-1.0)).seeded(c, sn)
+
+
+def _scaled(k: np.ndarray, u: np.ndarray, base: np.ndarray | None = None, sign: float = 1.0) -> np.ndarray:
+    """base + sign·k·u for scalars k (N,) and vectors u (N, 2), in columns."""
+    out = np.empty(u.shape)
+    for i in (0, 1):
+        if base is None:
+            np.multiply(k, u[:, i], out=out[:, i])
+        elif sign < 0.0:
+            np.subtract(base[:, i], k * u[:, i], out=out[:, i])
+        else:
+            np.add(base[:, i], k * u[:, i], out=out[:, i])
+    return out
 
 
 def _line(mech_state: LinkState, anchor: np.ndarray, direction: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -88,40 +113,50 @@ def _intersect(p1: np.ndarray, u1: np.ndarray, p2: np.ndarray, u2: np.ndarray) -
 
 # --- positions -----------------------------------------------------------------------------
 
-def candidates(group: Group, mech: Mechanism, states: States, tol: float) -> list[Candidate]:
+def candidates(group: Group, mech: Mechanism, states: States, tol: float, branch: int | None = None
+               ) -> list[Candidate]:
     """Every assembly branch of ``group``, given the states of the links it is attached to.
-    ``tol`` is the length tolerance (m) for assembly at a limit position."""
-    return _POSITIONS[group.form](group, mech, states, tol)
+    ``tol`` is the length tolerance (m) for assembly at a limit position. With ``branch``,
+    only that branch (its index in the full list) is solved, and the list holds it alone."""
+    return _POSITIONS[group.form](group, mech, states, tol, branch)
 
 
-def _rrr(g: Group, mech: Mechanism, states: States, tol: float) -> list[Candidate]:
+def _signs(branch: int | None) -> tuple[float, ...]:
+    """The signs of a two-branch form's solutions: both, or the one of ``branch``."""
+    return (1.0, -1.0) if branch is None else ((1.0, -1.0)[branch],)
+
+
+def _rrr(g: Group, mech: Mechanism, states: States, tol: float, branch: int | None = None
+         ) -> list[Candidate]:
     D, F = _pin(mech, states, g.d), _pin(mech, states, g.f)
     Lm = mech.links[g.m].local
     Ln = mech.links[g.n].local
     lm = float(np.linalg.norm(Lm[g.e.point] - Lm[g.d.point]))
     ln = float(np.linalg.norm(Ln[g.e.point] - Ln[g.f.point]))
     d = F - D
-    L = np.hypot(d[:, 0], d[:, 1])
+    L2 = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1]
+    L = np.sqrt(L2)
     Ls = np.where(L == 0.0, 1.0, L)
-    x = (lm * lm - ln * ln + L * L) / (2.0 * Ls)
+    x = (lm * lm - ln * ln + L2) / (2.0 * Ls)
     h2 = lm * lm - x * x
     valid = (L > 0.0) & (h2 >= -2.0 * tol * (lm + ln))
     h = np.sqrt(np.clip(h2, 0.0, None))
-    ex = d / Ls[:, None]
+    ex = _scaled(1.0 / Ls, d)
 
     def why(i: int) -> str:
         return (f"|{g.d.point}{g.f.point}| = {L[i]:.6g} m, but links {g.m} ({lm:.6g} m) and {g.n} ({ln:.6g} m) "
                 f"join only between {abs(lm - ln):.6g} and {lm + ln:.6g} m")
 
     out = []
-    for sign in (1.0, -1.0):
-        E = D + x[:, None] * ex + (sign * h)[:, None] * J(ex)
+    for sign in _signs(branch):
+        E = _scaled(x, ex, D) + _scaled(sign * h, J(ex))
         out.append(Candidate(_place(Lm[g.d.point], Lm[g.e.point], D, E),
                              _place(Ln[g.f.point], Ln[g.e.point], F, E), valid, why))
     return out
 
 
-def _rrp(g: Group, mech: Mechanism, states: States, tol: float) -> list[Candidate]:
+def _rrp(g: Group, mech: Mechanism, states: States, tol: float, branch: int | None = None
+         ) -> list[Candidate]:
     D = _pin(mech, states, g.d)
     pr, p = g.f.prismatic, g.f.other
     Lm, Ln = mech.links[g.m].local, mech.links[g.n].local
@@ -129,9 +164,11 @@ def _rrp(g: Group, mech: Mechanism, states: States, tol: float) -> list[Candidat
     theta = states[p].theta
     Q, u = _line(states[p], pr.anchor[p], pr.direction)
     h = float(np.dot(Ln[g.e.point] - pr.anchor[g.n], pr.normal))   # E's offset from the line, fixed in n
-    w = Q + h * J(u) - D
-    b = np.einsum("ij,ij->i", w, u)
-    disc = b * b - (np.einsum("ij,ij->i", w, w) - lm * lm)
+    Qh = Q + h * J(u) if h != 0.0 else Q
+    w = Qh - D
+    wx, wy, ux, uy = w[:, 0], w[:, 1], u[:, 0], u[:, 1]
+    b = wx * ux + wy * uy
+    disc = b * b - (wx * wx + wy * wy - lm * lm)
     valid = disc >= -2.0 * tol * lm
     root = np.sqrt(np.clip(disc, 0.0, None))
 
@@ -141,20 +178,21 @@ def _rrp(g: Group, mech: Mechanism, states: States, tol: float) -> list[Candidat
                 f"({dist:.6g} m away from {g.d.point})")
 
     out = []
-    for sign in (1.0, -1.0):
-        E = Q + h * J(u) + (-b + sign * root)[:, None] * u
+    for sign in _signs(branch):
+        E = _scaled(sign * root - b, u, Qh)
         out.append(Candidate(_place(Lm[g.d.point], Lm[g.e.point], D, E),
-                             _fixed_angle(theta, Ln[g.e.point], E), valid, why))
+                             _fixed_angle(theta, Ln[g.e.point], E, states[p]._cos_sin), valid, why))
     return out
 
 
-def _rpr(g: Group, mech: Mechanism, states: States, tol: float) -> list[Candidate]:
+def _rpr(g: Group, mech: Mechanism, states: States, tol: float, branch: int | None = None
+         ) -> list[Candidate]:
     D, F = _pin(mech, states, g.d), _pin(mech, states, g.f)
     pr = g.e.prismatic
     Lm, Ln = mech.links[g.m].local, mech.links[g.n].local
     h = float(np.dot(Lm[g.d.point] - pr.anchor[g.m], pr.normal) - np.dot(Ln[g.f.point] - pr.anchor[g.n], pr.normal))
     d = D - F
-    L = np.hypot(d[:, 0], d[:, 1])
+    L = np.sqrt(d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1])
     beta = np.arctan2(d[:, 1], d[:, 0])
     gamma = float(np.arctan2(pr.normal[1], pr.normal[0]))
     valid = (L > 0.0) & (np.abs(h) <= L + tol)
@@ -165,13 +203,14 @@ def _rpr(g: Group, mech: Mechanism, states: States, tol: float) -> list[Candidat
                 f"{abs(h):.6g} m")
 
     out = []
-    for sign in (1.0, -1.0):
+    for sign in _signs(branch):
         theta = beta - gamma - sign * c
         out.append(Candidate(_fixed_angle(theta, Lm[g.d.point], D), _fixed_angle(theta, Ln[g.f.point], F), valid, why))
     return out
 
 
-def _prp(g: Group, mech: Mechanism, states: States, tol: float) -> list[Candidate]:
+def _prp(g: Group, mech: Mechanism, states: States, tol: float, branch: int | None = None
+         ) -> list[Candidate]:
     k, p = g.d.other, g.f.other
     E = g.e.point
     Lm, Ln = mech.links[g.m].local, mech.links[g.n].local
@@ -187,15 +226,17 @@ def _prp(g: Group, mech: Mechanism, states: States, tol: float) -> list[Candidat
     def why(i: int) -> str:
         return f"the guides of links {g.m} and {g.n} are parallel, so pin {E} has no position"
 
-    return [Candidate(_fixed_angle(states[k].theta, Lm[E], Ew), _fixed_angle(states[p].theta, Ln[E], Ew), valid, why)]
+    return [Candidate(_fixed_angle(states[k].theta, Lm[E], Ew, states[k]._cos_sin),
+                      _fixed_angle(states[p].theta, Ln[E], Ew, states[p]._cos_sin), valid, why)]
 
 
-def _rpp(g: Group, mech: Mechanism, states: States, tol: float) -> list[Candidate]:
+def _rpp(g: Group, mech: Mechanism, states: States, tol: float, branch: int | None = None
+         ) -> list[Candidate]:
     D = _pin(mech, states, g.d)
     pe, pf, p = g.e.prismatic, g.f.prismatic, g.f.other
     Lm = mech.links[g.m].local
     theta = states[p].theta
-    m_state = _fixed_angle(theta, Lm[g.d.point], D)
+    m_state = _fixed_angle(theta, Lm[g.d.point], D, states[p]._cos_sin)
     Q, det = _intersect(*_line(m_state, pe.anchor[g.m], pe.direction), *_line(states[p], pf.anchor[p], pf.direction))
     Q_local, _ = _intersect(pe.anchor[g.n][None], pe.direction[None], pf.anchor[g.n][None], pf.direction[None])
     valid = np.abs(det) > 1e-12
@@ -203,7 +244,7 @@ def _rpp(g: Group, mech: Mechanism, states: States, tol: float) -> list[Candidat
     def why(i: int) -> str:
         return f"the two guides of link {g.n} are parallel, so its position along them is undetermined"
 
-    return [Candidate(m_state, _fixed_angle(theta, Q_local[0], Q), valid, why)]
+    return [Candidate(m_state, _fixed_angle(theta, Q_local[0], Q, states[p]._cos_sin), valid, why)]
 
 
 _POSITIONS = {"RRR": _rrr, "RRP": _rrp, "RPR": _rpr, "PRP": _prp, "RPP": _rpp}
@@ -214,7 +255,7 @@ _POSITIONS = {"RRR": _rrr, "RRP": _rrp, "RPR": _rpr, "PRP": _prp, "RPP": _rpp}
 def _cramer(U1: np.ndarray, U2: np.ndarray, rhs: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Solve rhs = x1·U1 + x2·U2; also return sin of the angle between U1 and U2."""
     det = cross(U1, U2)
-    scale = np.hypot(U1[:, 0], U1[:, 1]) * np.hypot(U2[:, 0], U2[:, 1])
+    scale = np.sqrt((U1[:, 0] * U1[:, 0] + U1[:, 1] * U1[:, 1]) * (U2[:, 0] * U2[:, 0] + U2[:, 1] * U2[:, 1]))
     sin = np.where(scale > 0.0, det / np.where(scale > 0.0, scale, 1.0), 0.0)
     safe = np.where(det == 0.0, 1.0, det)
     return cross(rhs, U2) / safe, cross(U1, rhs) / safe, sin
@@ -275,7 +316,7 @@ def velocities(g: Group, mech: Mechanism, states: dict[str, LinkState]) -> tuple
         vEp = p.velocity(E)
         wm, s, sin = _cramer(U1, U2, k.velocity(D) - vEp)
         states[g.m] = m.with_velocity(wm, D, k.velocity(D))
-        states[g.n] = n.with_velocity(p.omega, E, vEp + s[:, None] * u)
+        states[g.n] = n.with_velocity(p.omega, E, _scaled(s, u, vEp))
         return {"f": s}, sin
     if form == "RPR":
         D, F, u = geo["D"], geo["F"], geo["ue"]
@@ -287,15 +328,15 @@ def velocities(g: Group, mech: Mechanism, states: dict[str, LinkState]) -> tuple
         E, u1, u2 = geo["E"], geo["ud"], geo["uf"]
         vEk, vEp = k.velocity(E), p.velocity(E)
         s1, s2, sin = _cramer(U1, U2, vEk - vEp)
-        states[g.m] = m.with_velocity(k.omega, E, vEk + s1[:, None] * u1)
-        states[g.n] = n.with_velocity(p.omega, E, vEp + s2[:, None] * u2)
+        states[g.m] = m.with_velocity(k.omega, E, _scaled(s1, u1, vEk))
+        states[g.n] = n.with_velocity(p.omega, E, _scaled(s2, u2, vEp))
         return {"d": s1, "f": s2}, sin
     # RPP
     D, _ue, uf = geo["D"], geo["ue"], geo["uf"]
     vDp = p.velocity(D)
     se, sf, sin = _cramer(U1, U2, k.velocity(D) - vDp)
     states[g.m] = m.with_velocity(p.omega, D, k.velocity(D))
-    states[g.n] = n.with_velocity(p.omega, D, vDp + sf[:, None] * uf)
+    states[g.n] = n.with_velocity(p.omega, D, _scaled(sf, uf, vDp))
     return {"e": se, "f": sf}, sin
 
 
@@ -308,16 +349,16 @@ def accelerations(g: Group, mech: Mechanism, states: dict[str, LinkState], slidi
     form = g.form
 
     def sq(w: np.ndarray) -> np.ndarray:
-        return (w * w)[:, None]
+        return w * w
 
     def cor(w: np.ndarray, s: np.ndarray, u: np.ndarray) -> np.ndarray:
         """Coriolis acceleration 2·ω × (σ u)."""
-        return 2.0 * (w * s)[:, None] * J(u)
+        return _scaled(2.0 * (w * s), J(u))
 
     if form == "RRR":
         D, E, F = geo["D"], geo["E"], geo["F"]
         aD, aF = k.acceleration(D), p.acceleration(F)
-        rhs = aD - aF - sq(m.omega) * (E - D) + sq(n.omega) * (E - F)
+        rhs = _scaled(sq(n.omega), E - F, _scaled(sq(m.omega), E - D, aD - aF, -1.0))
         em, en, _ = _cramer(U1, U2, rhs)
         states[g.m] = m.with_acceleration(em, D, aD)
         states[g.n] = n.with_acceleration(en, F, aF)
@@ -325,15 +366,15 @@ def accelerations(g: Group, mech: Mechanism, states: dict[str, LinkState], slidi
         D, E, u = geo["D"], geo["E"], geo["uf"]
         s = sliding["f"]
         aD, aEp = k.acceleration(D), p.acceleration(E)
-        rhs = aD - sq(m.omega) * (E - D) - aEp - cor(p.omega, s, u)
+        rhs = _scaled(sq(m.omega), E - D, aD - aEp, -1.0) - cor(p.omega, s, u)
         em, ds, _ = _cramer(U1, U2, rhs)
         states[g.m] = m.with_acceleration(em, D, aD)
-        states[g.n] = n.with_acceleration(p.epsilon, E, aEp + ds[:, None] * u + cor(p.omega, s, u))
+        states[g.n] = n.with_acceleration(p.epsilon, E, _scaled(ds, u, aEp) + cor(p.omega, s, u))
     elif form == "RPR":
         D, F, u = geo["D"], geo["F"], geo["ue"]
         s, w = sliding["e"], m.omega
         aD, aF = k.acceleration(D), p.acceleration(F)
-        rhs = aD - aF + sq(w) * (D - F) - cor(w, s, u)
+        rhs = _scaled(sq(w), D - F, aD - aF) - cor(w, s, u)
         e, _, _ = _cramer(U1, U2, rhs)
         states[g.m] = m.with_acceleration(e, D, aD)
         states[g.n] = n.with_acceleration(e, F, aF)
@@ -343,8 +384,8 @@ def accelerations(g: Group, mech: Mechanism, states: dict[str, LinkState], slidi
         aEk = k.acceleration(E) + cor(k.omega, s1, u1)
         aEp = p.acceleration(E) + cor(p.omega, s2, u2)
         ds1, ds2, _ = _cramer(U1, U2, aEk - aEp)
-        states[g.m] = m.with_acceleration(k.epsilon, E, aEk + ds1[:, None] * u1)
-        states[g.n] = n.with_acceleration(p.epsilon, E, aEp + ds2[:, None] * u2)
+        states[g.m] = m.with_acceleration(k.epsilon, E, _scaled(ds1, u1, aEk))
+        states[g.n] = n.with_acceleration(p.epsilon, E, _scaled(ds2, u2, aEp))
     else:  # RPP
         D, ue, uf = geo["D"], geo["ue"], geo["uf"]
         se, sf, w = sliding["e"], sliding["f"], p.omega
@@ -353,4 +394,4 @@ def accelerations(g: Group, mech: Mechanism, states: dict[str, LinkState], slidi
         rhs = aD - aDp - cor(w, se, ue) - cor(w, sf, uf)
         dse, dsf, _ = _cramer(U1, U2, rhs)
         states[g.m] = m.with_acceleration(p.epsilon, D, aD)
-        states[g.n] = n.with_acceleration(p.epsilon, D, aDp + dsf[:, None] * uf + cor(w, sf, uf))
+        states[g.n] = n.with_acceleration(p.epsilon, D, _scaled(dsf, uf, aDp) + cor(w, sf, uf))

@@ -81,6 +81,9 @@ def _reach(mech: Mechanism, structure: Structure, values: np.ndarray) -> dict[st
     then, if that passes a limit or singular position, the long way (a crank that cannot turn
     fully reaches an angle only from one side). An angle reachable neither way is reported
     as the short way's failure."""
+    fast = _direct(mech, structure, values)
+    if fast is not None:
+        return fast
     try:
         states, targets = _positions(mech, structure, values)
         return {name: s.take(targets) for name, s in states.items()}
@@ -99,9 +102,13 @@ def _reach(mech: Mechanism, structure: Structure, values: np.ndarray) -> dict[st
             except AssemblyError:
                 raise short_way from None
         parts.append({name: s.take(targets) for name, s in states.items()})
-    return {name: LinkState(*(None if getattr(parts[0][name], f.name) is None
-                              else np.concatenate([getattr(p[name], f.name) for p in parts])
-                              for f in fields(LinkState))) for name in parts[0]}
+    out = {name: LinkState(*(None if getattr(parts[0][name], f.name) is None
+                             else np.concatenate([getattr(p[name], f.name) for p in parts])
+                             for f in fields(LinkState))) for name in parts[0]}
+    for name, state in out.items():   # cos θ, sin θ as solved, where every part knows them
+        if all("_cos_sin" in p[name].__dict__ for p in parts):
+            state.seeded(*(np.concatenate([p[name]._cos_sin[i] for p in parts]) for i in (0, 1)))
+    return out
 
 
 def group_condition(mech: Mechanism, g: ComplexGroup, states: dict[str, LinkState]) -> np.ndarray:
@@ -144,8 +151,7 @@ def _grid(mech: Mechanism, values: np.ndarray, start: float | None = None
     whole turns towards the values' median, unless ``start`` (such an angle) is given."""
     if mech.drive.kind == "rotary":
         if start is None:
-            start = mech.drive.sketch_value
-            start += 360.0 * np.round((np.median(values) - start) / 360.0)
+            start = _start(mech, values)
         step = STEP_DEG
     else:
         start = mech.drive.sketch_value
@@ -165,7 +171,8 @@ def drive_states(mech: Mechanism, values: np.ndarray) -> dict[str, LinkState]:
     """Poses of the frame and the driving link at drive ``values``."""
     n = len(values)
     zero = np.zeros(n)
-    states = {FRAME: LinkState(zero, np.zeros((n, 2)), zero, np.zeros((n, 2)), zero, np.zeros((n, 2)))}
+    states = {FRAME: LinkState(zero, np.zeros((n, 2)), zero, np.zeros((n, 2)), zero, np.zeros((n, 2))
+                               ).seeded(np.ones(n), zero)}
     d = mech.drive
     local = mech.links[d.link].local
     if d.kind == "rotary":
@@ -195,9 +202,66 @@ def _set_drive_rates(mech: Mechanism, states: dict[str, LinkState], values: np.n
     states[d.link] = s
 
 
-def _positions(mech: Mechanism, structure: Structure, values: np.ndarray, start: float | None = None
-               ) -> tuple[dict[str, LinkState], np.ndarray]:
+def _start(mech: Mechanism, values: np.ndarray) -> float:
+    """The walk's first value: a crank's sketch angle moved by whole turns towards the values'
+    median, a slider's sketch position."""
+    start = mech.drive.sketch_value
+    if mech.drive.kind == "rotary":
+        # round() is monotonic: when the extremes round alike, so does the median (no sort needed)
+        low, high = np.round((np.array([values.min(), values.max()]) - start) / 360.0)
+        turns = low if low == high else np.round((np.median(values) - start) / 360.0)
+        start += 360.0 * turns
+    return start
+
+
+def _direct(mech: Mechanism, structure: Structure, values: np.ndarray) -> dict[str, LinkState] | None:
+    """Poses at ``values`` of a mechanism of class II groups only, without walking through
+    every value: the walk runs on its own steps (from the start to the extreme values), which
+    checks assembly and singular crossings there and fixes every group's assembly branch
+    (constant along a walk that crosses no singular position); then only that branch is
+    solved at the values themselves. Each value must assemble, be well away from a singular
+    position (|sin| ≥ SINGULAR_SIN) and have the sign of sin of the walk's step before it (on
+    the sketch's side), so that no singular position lies between that step and the value:
+    then the walk through every value (:func:`_positions`) would choose the same branch and
+    refuse nothing, and its poses at the values are these, to the last bit. None (the full
+    walk decides, and reports any failure) when a check fails or a group is of class III/IV."""
+    if values.ndim != 1 or not values.size or not np.all(np.isfinite(values)) \
+            or any(isinstance(g, ComplexGroup) for g in structure.groups):
+        return None
+    start = _start(mech, values)
+    walked: dict = {}
+    try:
+        _positions(mech, structure, np.array([values.min(), values.max()]), start=start, record=walked)
+    except AssemblyError:
+        return None
+    grid, sweeps = walked.pop(None)
+    # the walk's step before every value, on the sketch's side
+    up, down = grid[sweeps[0]], grid[sweeps[1]][::-1]
+    before = np.empty(len(values), dtype=int)
+    high = values >= start
+    before[high] = sweeps[0][np.searchsorted(up, values[high], side="right") - 1]
+    before[~high] = sweeps[1][::-1][np.searchsorted(down, values[~high], side="left")]
+    states = drive_states(mech, values)
+    tol = 1e-12 * mech.size
+    for g in structure.groups:
+        branch, walk_sin = walked[g.name]
+        option = candidates(g, mech, states, tol, branch=branch)[0]
+        if not option.valid.all():
+            return None
+        states[g.m], states[g.n] = option.m, option.n
+        sin = conditioning(g, mech, states)
+        if not np.all((np.abs(sin) >= SINGULAR_SIN) & (np.sign(sin) == np.sign(walk_sin[before]))):
+            return None
+    return states
+
+
+def _positions(mech: Mechanism, structure: Structure, values: np.ndarray, start: float | None = None,
+               record: dict | None = None) -> tuple[dict[str, LinkState], np.ndarray]:
+    """Poses along the walk to ``values`` (see the module); ``record``, when given, receives
+    the grid and its sweeps (key None) and, per class II group, its branch and sin along the walk."""
     grid, sweeps, index = _grid(mech, values, start)
+    if record is not None:
+        record[None] = grid, sweeps
     states = drive_states(mech, grid)
     tol = 1e-12 * mech.size
     for g in structure.groups:
@@ -223,7 +287,10 @@ def _positions(mech: Mechanism, structure: Structure, values: np.ndarray, start:
                                     "lengths or the requested positions", group=_group_label(g),
                                     angle=_fmt(mech, target))
         states[g.m], states[g.n] = m_state, n_state
-        _check_crossing(mech, g, conditioning(g, mech, states), grid, sweeps, values)
+        sin = conditioning(g, mech, states)
+        _check_crossing(mech, g, sin, grid, sweeps, values)
+        if record is not None:
+            record[g.name] = int(choice[0]), sin
     return states, index
 
 
@@ -341,7 +408,10 @@ def _select(options: list[LinkState], choice: np.ndarray) -> LinkState:
     """The state that takes, at position i, option ``choice[i]``."""
     theta = np.choose(choice, [o.theta for o in options])
     origin = np.choose(choice[:, None], [o.origin for o in options])
-    return LinkState(theta, origin)
+    out = LinkState(theta, origin)
+    if all("_cos_sin" in o.__dict__ for o in options):   # as solved (a pose placed from points seeds them)
+        out.seeded(*(np.choose(choice, [o._cos_sin[i] for o in options]) for i in (0, 1)))
+    return out
 
 
 def _branch(mech: Mechanism, links: tuple[str, str], options: list, sweeps: list[np.ndarray]) -> np.ndarray:
