@@ -37,20 +37,20 @@ def _own_records(monkeypatch):
 #: (name, exact source text, its replacement, what the mutant does)
 MUTATIONS = {
     "RPR Coriolis sign": (
-        "rhs = aD - aF + sq(w) * (D - F) - cor(w, s, u)",
-        "rhs = aD - aF + sq(w) * (D - F) + cor(w, s, u)",
+        "rhs = _scaled(sq(w), D - F, aD - aF) - cor(w, s, u)",
+        "rhs = _scaled(sq(w), D - F, aD - aF) + cor(w, s, u)",
         "the slotted lever's acceleration equation with the Coriolis term of the wrong sign"),
     "RRP Coriolis sign": (
-        "rhs = aD - sq(m.omega) * (E - D) - aEp - cor(p.omega, s, u)",
-        "rhs = aD - sq(m.omega) * (E - D) - aEp + cor(p.omega, s, u)",
+        "rhs = _scaled(sq(m.omega), E - D, aD - aEp, -1.0) - cor(p.omega, s, u)",
+        "rhs = _scaled(sq(m.omega), E - D, aD - aEp, -1.0) + cor(p.omega, s, u)",
         "RRP on a turning guide: its acceleration equation with the Coriolis term of the wrong sign"),
     "Coriolis helper sign": (
-        "return 2.0 * (w * s)[:, None] * J(u)",
-        "return -2.0 * (w * s)[:, None] * J(u)",
+        "return _scaled(2.0 * (w * s), J(u))",
+        "return _scaled(-2.0 * (w * s), J(u))",
         "2·ω × σu of the wrong sign everywhere (RRP, RPR, PRP, RPP)"),
     "Coriolis helper factor": (
-        "return 2.0 * (w * s)[:, None] * J(u)",
-        "return 1.0 * (w * s)[:, None] * J(u)",
+        "return _scaled(2.0 * (w * s), J(u))",
+        "return _scaled(1.0 * (w * s), J(u))",
         "ω × σu instead of 2·ω × σu (the classic slip)"),
 }
 

@@ -1,7 +1,8 @@
 """Exact kinematics: positions, velocities and accelerations, vectorised over drive positions."""
 
 from .state import LinkState, Motion
-from .solve import analyse, SINGULAR_SIN, WARN_SIN
+from .solve import analyse
+from .tolerances import SINGULAR_SIN, WARN_SIN
 from .sliders import Sliding, link_angles, sliding
 
 __all__ = ["LinkState", "Motion", "analyse", "SINGULAR_SIN", "WARN_SIN", "Sliding", "link_angles", "sliding"]

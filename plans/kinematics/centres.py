@@ -21,13 +21,11 @@ from itertools import combinations
 import numpy as np
 
 from ..scene import FRAME
+from .tolerances import INFINITY_RTOL
 from .state import J, Motion
 
 __all__ = ["Centre", "Centres", "centres", "INFINITY_RTOL"]
 
-#: |ω_i − ω_j|·size ≤ INFINITY_RTOL·|relative velocity| puts a centre at infinity (it would
-#: lie more than 1e9 mechanism sizes away).
-INFINITY_RTOL = 1e-9
 
 
 @dataclass(frozen=True)

@@ -34,7 +34,8 @@ from typing import Mapping
 import numpy as np
 
 from ..model import Mechanism
-from .generic import MAX_ITER, TOLERANCE
+from .generic import TOLERANCE
+from .tolerances import COARSE_RTOL, MAX_ITER
 from .state import LinkState
 
 __all__ = ["CompiledGroup", "walk"]
@@ -311,9 +312,7 @@ COARSE_ITER = 5
 CORRECTOR = 0.3
 #: ... and the next stride is doubled when the corrector moved at most GROW × that.
 GROW = 0.1
-#: The coarse nodes are only seeds (the batched solve polishes them): Newton stops there at
-#: this residual (× size).
-COARSE_TOLERANCE = 1e-9
+COARSE_TOLERANCE = COARSE_RTOL     # the coarse nodes' Newton stops there (× size); see tolerances.py
 #: A position of the batched solve may lie at most SEED × its coarse interval's movement
 #: from its interpolated seed (else: another branch may have been found; fall back).
 SEED = 0.2

@@ -28,13 +28,11 @@ import numpy as np
 
 from ..model import Mechanism
 from .state import J, LinkState
+from .tolerances import MAX_ITER, NEWTON_RTOL
 
 __all__ = ["GroupEquations", "NewtonResult", "TOLERANCE", "MAX_ITER"]
 
-#: Newton stops when the largest equation residual is below TOLERANCE·size (m).
-TOLERANCE = 1e-13
-#: Newton iterations allowed per step before the step is halved.
-MAX_ITER = 30
+TOLERANCE = NEWTON_RTOL      # Newton stops below TOLERANCE·size (m); see tolerances.py
 
 States = Mapping[str, LinkState]
 

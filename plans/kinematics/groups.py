@@ -26,6 +26,7 @@ import numpy as np
 
 from ..model import Mechanism
 from ..structure import Group, Joint
+from .tolerances import PARALLEL_DET
 from .state import J, LinkState, _rotated, cos_sin, cross
 
 __all__ = ["Candidate", "candidates", "conditioning", "velocities", "accelerations", "SINGULAR_REASON"]
@@ -221,7 +222,7 @@ def _prp(g: Group, mech: Mechanism, states: States, tol: float, branch: int | No
         h = float(np.dot(L[E] - pr.anchor[link], pr.normal))
         lines.append((Q + h * J(u), u))
     Ew, det = _intersect(*lines[0], *lines[1])
-    valid = np.abs(det) > 1e-12
+    valid = np.abs(det) > PARALLEL_DET
 
     def why(i: int) -> str:
         return f"the guides of links {g.m} and {g.n} are parallel, so pin {E} has no position"
@@ -239,7 +240,7 @@ def _rpp(g: Group, mech: Mechanism, states: States, tol: float, branch: int | No
     m_state = _fixed_angle(theta, Lm[g.d.point], D, states[p]._cos_sin)
     Q, det = _intersect(*_line(m_state, pe.anchor[g.m], pe.direction), *_line(states[p], pf.anchor[p], pf.direction))
     Q_local, _ = _intersect(pe.anchor[g.n][None], pe.direction[None], pf.anchor[g.n][None], pf.direction[None])
-    valid = np.abs(det) > 1e-12
+    valid = np.abs(det) > PARALLEL_DET
 
     def why(i: int) -> str:
         return f"the two guides of link {g.n} are parallel, so its position along them is undetermined"
@@ -332,7 +333,7 @@ def velocities(g: Group, mech: Mechanism, states: dict[str, LinkState]) -> tuple
         states[g.n] = n.with_velocity(p.omega, E, _scaled(s2, u2, vEp))
         return {"d": s1, "f": s2}, sin
     # RPP
-    D, _ue, uf = geo["D"], geo["ue"], geo["uf"]
+    D, uf = geo["D"], geo["uf"]
     vDp = p.velocity(D)
     se, sf, sin = _cramer(U1, U2, k.velocity(D) - vDp)
     states[g.m] = m.with_velocity(p.omega, D, k.velocity(D))

@@ -23,6 +23,7 @@ import numpy as np
 from ..scene import LINEAR_STEPS_PER_SIZE, STEP_DEG, DriveKind
 from ..structure import ComplexGroup
 from .compiled import CompiledGroup
+from .tolerances import ASSEMBLY_RTOL
 from .generic import GroupEquations
 from .groups import candidates, conditioning
 from .state import LinkState, Motion
@@ -40,7 +41,7 @@ class LocalPoser:
         self.groups = groups[:last + 1]
         self.target = self.groups[-1]
         self.step = STEP_DEG if mech.drive.kind == DriveKind.ROTARY else mech.size / LINEAR_STEPS_PER_SIZE
-        self.tol = 1e-12 * mech.size
+        self.tol = ASSEMBLY_RTOL * mech.size
         x0 = float(motion.values[i])
         here = {name: s.take(np.array([i])) for name, s in motion.links.items()}
         # the class II branches taken at i, and the complex groups' poses there

@@ -17,25 +17,17 @@ import numpy as np
 from ..errors import AssemblyError, SingularPositionError
 from ..model import Mechanism
 from ..structure import Structure
-from ..scene import FRAME, LINEAR_STEPS_PER_SIZE, STEP_DEG   # the walk's steps, bounded by the scene
+from ..scene import FRAME, LINEAR_STEPS_PER_SIZE, STEP_DEG, DriveKind   # the walk's steps, bounded by the scene
 from ..structure import ComplexGroup
 from . import special
 from .compiled import CompiledGroup, walk as compiled_walk
 from .generic import GroupEquations
 from .groups import SINGULAR_REASON, accelerations, candidates, conditioning, velocities
+from .tolerances import ASSEMBLY_RTOL, JUMP_RATIO, SINGULAR_SIN, WARN_SIN
 from .state import LinkState, Motion, rotate
 
 __all__ = ["analyse", "drive_states", "singular_reason", "group_condition", "SINGULAR_SIN", "WARN_SIN", "STEP_DEG", "JUMP_RATIO"]
 
-#: |sin| of a group's velocity equations below which the position is reported as singular.
-#: At an exact dead centre rounding leaves |sin| ~ sqrt(machine eps) ~ 1e-8, so the bound
-#: sits above that; 1° from a singular position |sin| is still ~1e-2.
-SINGULAR_SIN = 1e-6
-#: |sin| below which the position is reported as near-singular (a warning, values are kept).
-WARN_SIN = 1e-2
-#: A class III/IV step whose points move more than JUMP_RATIO times the previous step
-#: (and more than 1 % of the mechanism's size) is a jump to another assembly branch.
-JUMP_RATIO = 8.0
 
 
 def singular_reason(g) -> str:
@@ -88,7 +80,7 @@ def _reach(mech: Mechanism, structure: Structure, values: np.ndarray) -> dict[st
         states, targets = _positions(mech, structure, values)
         return {name: s.take(targets) for name, s in states.items()}
     except AssemblyError:
-        if mech.drive.kind != "rotary":
+        if mech.drive.kind != DriveKind.ROTARY:
             raise
     parts = []
     for value in values:
@@ -141,7 +133,7 @@ def _refuse_singular(mech: Mechanism, g, sin: np.ndarray, values: np.ndarray) ->
 
 
 def _fmt(mech: Mechanism, value: float) -> str:
-    return f"{value:g}°" if mech.drive.kind == "rotary" else f"{value:g} m"
+    return f"{value:g}°" if mech.drive.kind == DriveKind.ROTARY else f"{value:g} m"
 
 
 def _grid(mech: Mechanism, values: np.ndarray, start: float | None = None
@@ -149,7 +141,7 @@ def _grid(mech: Mechanism, values: np.ndarray, start: float | None = None
     """The continuation grid: its values, its sweeps (index paths from the start), and the
     index of every requested value in it. A crank's walk starts at its sketch angle moved by
     whole turns towards the values' median, unless ``start`` (such an angle) is given."""
-    if mech.drive.kind == "rotary":
+    if mech.drive.kind == DriveKind.ROTARY:
         if start is None:
             start = _start(mech, values)
         step = STEP_DEG
@@ -175,7 +167,7 @@ def drive_states(mech: Mechanism, values: np.ndarray) -> dict[str, LinkState]:
                                ).seeded(np.ones(n), zero)}
     d = mech.drive
     local = mech.links[d.link].local
-    if d.kind == "rotary":
+    if d.kind == DriveKind.ROTARY:
         pivot = mech.links[FRAME].local[d.pivot]
         arm = local[d.tip] - local[d.pivot]
         theta = np.radians(values) - np.arctan2(arm[1], arm[0])
@@ -191,7 +183,7 @@ def _set_drive_rates(mech: Mechanism, states: dict[str, LinkState], values: np.n
     d = mech.drive
     n = len(values)
     s = states[d.link]
-    if d.kind == "rotary":
+    if d.kind == DriveKind.ROTARY:
         pivot = np.broadcast_to(mech.links[FRAME].local[d.pivot], (n, 2))
         s = s.with_velocity(np.full(n, d.speed), pivot, np.zeros((n, 2)))
         s = s.with_acceleration(np.full(n, d.rate), pivot, np.zeros((n, 2)))
@@ -206,7 +198,7 @@ def _start(mech: Mechanism, values: np.ndarray) -> float:
     """The walk's first value: a crank's sketch angle moved by whole turns towards the values'
     median, a slider's sketch position."""
     start = mech.drive.sketch_value
-    if mech.drive.kind == "rotary":
+    if mech.drive.kind == DriveKind.ROTARY:
         # round() is monotonic: when the extremes round alike, so does the median (no sort needed)
         low, high = np.round((np.array([values.min(), values.max()]) - start) / 360.0)
         turns = low if low == high else np.round((np.median(values) - start) / 360.0)
@@ -242,7 +234,7 @@ def _direct(mech: Mechanism, structure: Structure, values: np.ndarray) -> dict[s
     before[high] = sweeps[0][np.searchsorted(up, values[high], side="right") - 1]
     before[~high] = sweeps[1][::-1][np.searchsorted(down, values[~high], side="left")]
     states = drive_states(mech, values)
-    tol = 1e-12 * mech.size
+    tol = ASSEMBLY_RTOL * mech.size
     for g in structure.groups:
         branch, walk_sin = walked[g.name]
         option = candidates(g, mech, states, tol, branch=branch)[0]
@@ -263,7 +255,7 @@ def _positions(mech: Mechanism, structure: Structure, values: np.ndarray, start:
     if record is not None:
         record[None] = grid, sweeps
     states = drive_states(mech, grid)
-    tol = 1e-12 * mech.size
+    tol = ASSEMBLY_RTOL * mech.size
     for g in structure.groups:
         if isinstance(g, ComplexGroup):
             eq = GroupEquations(mech, g.links, g.pairs)
@@ -336,7 +328,7 @@ def _fast_walk(mech: Mechanism, eq: GroupEquations, states: dict[str, LinkState]
         return None
     q = np.empty((len(grid), group.n))
     q[start[0]] = q0[0]
-    step = STEP_DEG if mech.drive.kind == "rotary" else mech.size / LINEAR_STEPS_PER_SIZE
+    step = STEP_DEG if mech.drive.kind == DriveKind.ROTARY else mech.size / LINEAR_STEPS_PER_SIZE
     for sweep in sweeps:
         part = compiled_walk(group, sweep, grid[sweep], q[sweep[0]], step, JUMP_RATIO)
         if part is None:

@@ -38,15 +38,12 @@ import numpy as np
 from ..model import Mechanism
 from ..structure import ComplexGroup, Rod
 from .state import J, LinkState, cross
+from .tolerances import CROSS_CHECK_RTOL
 
 __all__ = ["Axis", "SpecialPoint", "TriadSolution", "axes", "special_points", "solve_triad", "condition",
            "supports", "triad_groups", "triads", "disagreement", "CROSS_CHECK_RTOL", "pick", "known_acceleration"]
 
-#: Largest relative difference allowed between the special-point and the Jacobian solutions of
-#: a class III group: both are exact to rounding, which near a singular position (|sin| ~ 1e-2,
-#: the warning bound) amplifies eps to ~1e-12; 1e-9 leaves a thousandfold margin and still
-#: catches any wrong term (a missing Coriolis or normal term is of order 1).
-CROSS_CHECK_RTOL = 1e-9
+
 
 States = Mapping[str, LinkState]
 
