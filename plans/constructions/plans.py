@@ -64,6 +64,7 @@ import numpy as np
 
 from ..errors import ConstructionError
 from ..kinematics import Motion, special
+from ..kinematics.sliders import Sliding, sliding
 from ..kinematics.state import J
 from ..scene import FRAME, DriveKind
 from ..structure import ComplexGroup
@@ -271,6 +272,7 @@ class _Builder:
         self.lines: list[ConstructionLine] = []
         self.extra: dict[str, np.ndarray] = {}   # constructed points (special points S1…): world position
         self.optional: set[str] = set()          # relative vectors left out where an absolute one draws them
+        self._sliding: dict[str, Sliding] | None = None
 
     def put(self, key: tuple, label: str, xy) -> tuple[float, float]:
         """Record an image (first one wins) under ``key``, printed as ``label``."""
@@ -333,10 +335,12 @@ class _Builder:
         vec = state.velocity(x) if self.kind == "velocity" else state.acceleration(x)
         return vec[0]
 
-    def quantity_v(self, point: str, link: str) -> np.ndarray:
-        """v (m/s) of the point of ``link`` now at ``point``."""
-        state = self.motion.links[link].take(np.array([self.i]))
-        return state.velocity(self.world(point)[None, :])[0]
+    def slide(self, slider: str, guide: str) -> Sliding:
+        """The kinematics' sliding of ``slider`` along ``guide`` (the first such pair, as
+        the plans take it)."""
+        if self._sliding is None:
+            self._sliding = sliding(self.motion)
+        return next(s for s in self._sliding.values() if s.slider == slider and s.guide == guide)
 
     def image(self, point: str, link: str) -> tuple[float, float]:
         key = self.image_key(point, link)
@@ -517,13 +521,15 @@ def _slide(b: _Builder, rel: Relation, sym: str, pole) -> None:
         b.vector(q, tail, head, value, "relative")
         b.line(tail, u, [head], q, rel.line_group)
         return
-    # a_moving = a_known + a^k + a^r with a^k = 2 ω_guide × (v_moving − v_known)
-    v_rel = b.quantity_v(rel.x, moving) - b.quantity_v(rel.x, known)
-    coriolis = 2.0 * float(motion.links[guide].omega[b.i]) * J(v_rel)
+    # a_moving = a_known + a^k + a^r: the kinematics gives the slider's Coriolis term relative
+    # to the guide, 2 ω_guide × σu, and σ̇ along the guide; the guide relative to the slider
+    # has both with the opposite sign
+    slide = b.slide(slider, guide)
+    sense = 1.0 if moving == slider else -1.0
+    coriolis = sense * slide.coriolis[b.i]
     k_xy = b.put(("k", ml, kl), f"k_{ml}{kl}", np.add(tail, coriolis / b.mu))
-    a_rel = b.quantity(rel.x, moving) - b.quantity(rel.x, known) - coriolis
     b.vector(f"{q}:cor", tail, k_xy, float(np.linalg.norm(coriolis)), "coriolis")
-    b.vector(f"{q}:r", k_xy, head, float(np.linalg.norm(a_rel)), "sliding")
+    b.vector(f"{q}:r", k_xy, head, abs(float(slide.a[b.i])), "sliding")
     b.line(k_xy, u, [head], f"{q}:r", rel.line_group)
 
 
