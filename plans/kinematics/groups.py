@@ -27,7 +27,7 @@ import numpy as np
 from ..model import Mechanism
 from ..structure import Group, Joint
 from .tolerances import PARALLEL_DET
-from .state import J, LinkState, _rotated, cos_sin, cross
+from .state import J, LinkState, _pair, _rotated, cos_sin, cross
 
 __all__ = ["Candidate", "candidates", "conditioning", "velocities", "accelerations", "SINGULAR_REASON"]
 
@@ -89,7 +89,7 @@ def _fixed_angle(theta: np.ndarray, local: np.ndarray, x: np.ndarray, cs: tuple 
 
 def _scaled(k: np.ndarray, u: np.ndarray, base: np.ndarray | None = None, sign: float = 1.0) -> np.ndarray:
     """base + sign·k·u for scalars k (N,) and vectors u (N, 2), in columns."""
-    out = np.empty(u.shape)
+    out = _pair(len(u))
     for i in (0, 1):
         if base is None:
             np.multiply(k, u[:, i], out=out[:, i])
@@ -257,8 +257,9 @@ def _cramer(U1: np.ndarray, U2: np.ndarray, rhs: np.ndarray) -> tuple[np.ndarray
     """Solve rhs = x1·U1 + x2·U2; also return sin of the angle between U1 and U2."""
     det = cross(U1, U2)
     scale = np.sqrt((U1[:, 0] * U1[:, 0] + U1[:, 1] * U1[:, 1]) * (U2[:, 0] * U2[:, 0] + U2[:, 1] * U2[:, 1]))
-    sin = np.where(scale > 0.0, det / np.where(scale > 0.0, scale, 1.0), 0.0)
-    safe = np.where(det == 0.0, 1.0, det)
+    # np.where only where a zero needs it (it costs several products)
+    sin = det / scale if scale.all() else np.where(scale > 0.0, det / np.where(scale > 0.0, scale, 1.0), 0.0)
+    safe = det if det.all() else np.where(det == 0.0, 1.0, det)
     return cross(rhs, U2) / safe, cross(U1, rhs) / safe, sin
 
 

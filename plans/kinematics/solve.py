@@ -208,10 +208,10 @@ def _start(mech: Mechanism, values: np.ndarray) -> float:
 
 def _direct(mech: Mechanism, structure: Structure, values: np.ndarray) -> dict[str, LinkState] | None:
     """Poses at ``values`` of a mechanism of class II groups only, without walking through
-    every value: the walk runs on its own steps (from the start to the extreme values), which
-    checks assembly and singular crossings there and fixes every group's assembly branch
-    (constant along a walk that crosses no singular position); then only that branch is
-    solved at the values themselves. Each value must assemble, be well away from a singular
+    every value: each group's assembly branch is the one the walk takes at its start (constant
+    along a walk that crosses no singular position), and only that branch is solved, at the
+    walk's own steps (from the start to the extreme values, where assembly and singular
+    crossings are checked as the walk checks them) and at the values, in one pass. Each value must assemble, be well away from a singular
     position (|sin| ≥ SINGULAR_SIN) and have the sign of sin of the walk's step before it (on
     the sketch's side), so that no singular position lies between that step and the value:
     then the walk through every value (:func:`_positions`) would choose the same branch and
@@ -221,30 +221,37 @@ def _direct(mech: Mechanism, structure: Structure, values: np.ndarray) -> dict[s
             or any(isinstance(g, ComplexGroup) for g in structure.groups):
         return None
     start = _start(mech, values)
-    walked: dict = {}
-    try:
-        _positions(mech, structure, np.array([values.min(), values.max()]), start=start, record=walked)
-    except AssemblyError:
-        return None
-    grid, sweeps = walked.pop(None)
+    ends = np.array([values.min(), values.max()])
+    grid, sweeps, _ = _grid(mech, ends, start)
+    k = len(grid)
+    # the walk's steps and the values, solved together: each group on the branch the walk
+    # would take at its start (the sketch's), then checked along the steps as the walk checks
+    states = drive_states(mech, np.concatenate([grid, values]))
+    tol = ASSEMBLY_RTOL * mech.size
+    first = np.array([0])            # the grid's start
     # the walk's step before every value, on the sketch's side
     up, down = grid[sweeps[0]], grid[sweeps[1]][::-1]
     before = np.empty(len(values), dtype=int)
     high = values >= start
     before[high] = sweeps[0][np.searchsorted(up, values[high], side="right") - 1]
     before[~high] = sweeps[1][::-1][np.searchsorted(down, values[~high], side="left")]
-    states = drive_states(mech, values)
-    tol = ASSEMBLY_RTOL * mech.size
     for g in structure.groups:
-        branch, walk_sin = walked[g.name]
+        options = candidates(g, mech, {name: s.take(first) for name, s in states.items()}, tol)
+        branch = int(_branch(mech, g.links, options, [first])[0])
         option = candidates(g, mech, states, tol, branch=branch)[0]
         if not option.valid.all():
             return None
         states[g.m], states[g.n] = option.m, option.n
         sin = conditioning(g, mech, states)
+        walk_sin, sin = sin[:k], sin[k:]
+        try:
+            _check_crossing(mech, g, walk_sin, grid, sweeps, ends)
+        except AssemblyError:
+            return None
         if not np.all((np.abs(sin) >= SINGULAR_SIN) & (np.sign(sin) == np.sign(walk_sin[before]))):
             return None
-    return states
+    at = slice(k, None)
+    return {name: s.take(at) for name, s in states.items()}
 
 
 def _positions(mech: Mechanism, structure: Structure, values: np.ndarray, start: float | None = None,

@@ -18,13 +18,18 @@ import numpy as np
 
 __all__ = ["J", "cross", "rotate", "cos_sin", "LinkState", "Motion"]
 
-
 def J(v: np.ndarray) -> np.ndarray:
     """k × v: the vector turned by +90°."""
-    out = np.empty(np.shape(v))
-    out[..., 0] = -v[..., 1]
+    out = _pair(len(v)) if np.ndim(v) == 2 else np.empty(np.shape(v))
+    np.negative(v[..., 1], out=out[..., 0])
     out[..., 1] = v[..., 0]
     return out
+
+
+def _pair(n: int) -> np.ndarray:
+    """An empty (n, 2) array of vectors stored by columns (x, then y), so that the column
+    arithmetic of the rigid-body relations runs on contiguous memory."""
+    return np.empty((2, n)).T
 
 
 def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -46,7 +51,7 @@ def _rotated(local: np.ndarray, c: np.ndarray, s: np.ndarray, base: np.ndarray |
              sign: float = 1.0) -> np.ndarray:
     """base + sign·R·local (base (N, 2) or None for 0) from cos θ, sin θ: shape (N, 2)."""
     x, y = float(local[0]), float(local[1])
-    out = np.empty((len(c), 2))
+    out = _pair(len(c))
     if x == 0.0 and y == 0.0:
         out[...] = 0.0 if base is None else base
         return out
@@ -76,7 +81,7 @@ def _spin(v: np.ndarray | None, w: np.ndarray, r: np.ndarray, w2: np.ndarray | N
     """v + w·k×r (− w2·r with w2, the ω² term, when ``e`` (then the k× factor) is given):
     the rigid-body relations, in columns. v None is 0."""
     rx, ry = r[:, 0], r[:, 1]
-    out = np.empty(r.shape)
+    out = _pair(len(r))
     if e is None:
         x, y = w * ry, w * rx
         if v is None:
