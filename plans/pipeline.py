@@ -191,6 +191,17 @@ def report(scene: Scene, motion: Motion, scales: Scales, solutions: dict | None 
     return {"title": scene.title, "structure": motion.structure.as_dict(), "positions": positions}
 
 
+def _no_negative_zero(data):
+    """``data`` with every -0.0 written as 0.0 (a zero's sign is rounding, not information)."""
+    if isinstance(data, float):
+        return data + 0.0
+    if isinstance(data, dict):
+        return {k: _no_negative_zero(v) for k, v in data.items()}
+    if isinstance(data, list):
+        return [_no_negative_zero(v) for v in data]
+    return data
+
+
 def _xy(p) -> list[float] | None:
     return None if p is None else [float(p[0]), float(p[1])]
 
@@ -204,7 +215,7 @@ def _slide(sl, i: int) -> dict:
         out["v"] = float(sl.v[i])
     if sl.a is not None:
         out["a"] = float(sl.a[i])
-        out["coriolis"] = [float(c) + 0.0 for c in sl.coriolis[i]]    # + 0.0: no -0.0
+        out["coriolis"] = [float(c) for c in sl.coriolis[i]]
     return out
 
 
@@ -298,7 +309,8 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
             sym = "μ_V" if kind == "velocity" else "μ_a"
             files[f"{stem}-{kind}{sfx}.svg"] = draw_plan(plan, heading, ident=f"{kind}{sfx or ''}", style=style,
                                                          notes=tuple(n for n in scales.notes if n.startswith(sym)))
-    files[f"{stem}.json"] = json.dumps(report(scene, motion, scales, solutions, ic), indent=1, ensure_ascii=False) + "\n"
+    data = _no_negative_zero(report(scene, motion, scales, solutions, ic))
+    files[f"{stem}.json"] = json.dumps(data, indent=1, ensure_ascii=False) + "\n"
     return Rendered(stem, files, motion, scales, tuple(warnings))
 
 

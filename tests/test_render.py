@@ -200,3 +200,24 @@ def test_committed_gallery_is_what_the_examples_render(rendered):
     stale = [n for n in fresh
              if not (gallery / n).is_file() or (gallery / n).read_bytes() != (rendered / n).read_bytes()]
     assert not stale, f"output/ is out of date for {len(stale)} files, e.g. {stale[:3]}: re-render the gallery"
+
+
+def test_reports_write_no_negative_zero(rendered):
+    """A zero's sign is rounding: no report of the examples prints -0.0 (values at rest, on the
+    frame, or along a fixed guide come out of the arithmetic as ±0)."""
+    import json
+
+    def floats(x):
+        if isinstance(x, float):
+            yield x
+        elif isinstance(x, dict):
+            for v in x.values():
+                yield from floats(v)
+        elif isinstance(x, list):
+            for v in x:
+                yield from floats(v)
+
+    for path in sorted(rendered.glob("*.json")):
+        text = path.read_text(encoding="utf-8")
+        zeros = [v for v in floats(json.loads(text)) if v == 0.0]
+        assert zeros and not any(math.copysign(1.0, v) < 0 for v in zeros), path.name

@@ -25,6 +25,7 @@ from typing import Callable, Mapping
 import numpy as np
 
 from ..model import Mechanism
+from ..scene import FRAME
 from ..structure import Group, Joint
 from .tolerances import PARALLEL_DET
 from .state import J, LinkState, _pair, _rotated, cos_sin, cross
@@ -253,8 +254,13 @@ _POSITIONS = {"RRR": _rrr, "RRP": _rrp, "RPR": _rpr, "PRP": _prp, "RPP": _rpp}
 
 # --- velocities and accelerations ----------------------------------------------------------
 
-def _cramer(U1: np.ndarray, U2: np.ndarray, rhs: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Solve rhs = x1·U1 + x2·U2; also return sin of the angle between U1 and U2."""
+def _cramer(U1: np.ndarray, U2: np.ndarray, rhs: np.ndarray, det: np.ndarray | None = None
+            ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """Solve rhs = x1·U1 + x2·U2; also return sin of the angle between U1 and U2 (None when
+    ``det``, U1 × U2, is given: the sin is known already)."""
+    if det is not None:
+        safe = det if det.all() else np.where(det == 0.0, 1.0, det)
+        return cross(rhs, U2) / safe, cross(U1, rhs) / safe, None
     det = cross(U1, U2)
     scale = np.sqrt((U1[:, 0] * U1[:, 0] + U1[:, 1] * U1[:, 1]) * (U2[:, 0] * U2[:, 0] + U2[:, 1] * U2[:, 1]))
     # np.where only where a zero needs it (it costs several products)
@@ -300,6 +306,23 @@ def conditioning(g: Group, mech: Mechanism, states: States) -> np.ndarray:
     return _cramer(U1, U2, np.zeros_like(U1))[2]
 
 
+def _velocity(name: str, state: LinkState, x: np.ndarray) -> np.ndarray | None:
+    """v of link ``name``'s point at ``x``; None (zero) on the frame."""
+    return None if name == FRAME else state.velocity(x)
+
+
+def _acceleration(name: str, state: LinkState, x: np.ndarray) -> np.ndarray | None:
+    """a of link ``name``'s point at ``x``; None (zero) on the frame."""
+    return None if name == FRAME else state.acceleration(x)
+
+
+def _difference(a: np.ndarray | None, b: np.ndarray | None, n: int) -> np.ndarray:
+    """a − b, None being zero."""
+    if b is None:
+        return np.zeros((n, 2)) if a is None else a
+    return -b if a is None else a - b
+
+
 def velocities(g: Group, mech: Mechanism, states: dict[str, LinkState]) -> tuple[dict, np.ndarray]:
     """Set ω and v of the group's links in ``states``; return the sliding speeds σ and sin."""
     geo = _geometry(g, mech, states)
@@ -309,17 +332,18 @@ def velocities(g: Group, mech: Mechanism, states: dict[str, LinkState]) -> tuple
     form = g.form
     if form == "RRR":
         D, E, F = geo["D"], geo["E"], geo["F"]
-        wm, wn, sin = _cramer(U1, U2, k.velocity(D) - p.velocity(F))
-        states[g.m] = m.with_velocity(wm, D, k.velocity(D))
-        states[g.n] = n.with_velocity(wn, F, p.velocity(F))
-        return {}, sin
+        vD, vF = _velocity(g.d.other, k, D), _velocity(g.f.other, p, F)
+        wm, wn, sin = _cramer(U1, U2, _difference(vD, vF, len(D)))
+        states[g.m] = m.with_velocity(wm, D, vD, own=True)
+        states[g.n] = n.with_velocity(wn, F, vF, own=True)
+        return {"_geo": (geo, U1, U2)}, sin
     if form == "RRP":
         D, E, u = geo["D"], geo["E"], geo["uf"]
-        vEp = p.velocity(E)
-        wm, s, sin = _cramer(U1, U2, k.velocity(D) - vEp)
-        states[g.m] = m.with_velocity(wm, D, k.velocity(D))
+        vD, vEp = _velocity(g.d.other, k, D), _velocity(g.f.other, p, E)
+        wm, s, sin = _cramer(U1, U2, _difference(vD, vEp, len(D)))
+        states[g.m] = m.with_velocity(wm, D, vD, own=True)
         states[g.n] = n.with_velocity(p.omega, E, _scaled(s, u, vEp))
-        return {"f": s}, sin
+        return {"f": s, "_geo": (geo, U1, U2)}, sin
     if form == "RPR":
         D, F, u = geo["D"], geo["F"], geo["ue"]
         w, s, sin = _cramer(U1, U2, k.velocity(D) - p.velocity(F))
@@ -344,8 +368,10 @@ def velocities(g: Group, mech: Mechanism, states: dict[str, LinkState]) -> tuple
 
 def accelerations(g: Group, mech: Mechanism, states: dict[str, LinkState], sliding: dict) -> None:
     """Set ε and a of the group's links in ``states`` (velocities must be set)."""
-    geo = _geometry(g, mech, states)
-    U1, U2 = _directions(g, geo)
+    geo, U1, U2 = sliding["_geo"] if "_geo" in sliding else (None, None, None)
+    if geo is None:
+        geo = _geometry(g, mech, states)
+        U1, U2 = _directions(g, geo)
     k, p = states[g.d.other], states[g.f.other]
     m, n = states[g.m], states[g.n]
     form = g.form
@@ -359,18 +385,25 @@ def accelerations(g: Group, mech: Mechanism, states: dict[str, LinkState], slidi
 
     if form == "RRR":
         D, E, F = geo["D"], geo["E"], geo["F"]
-        aD, aF = k.acceleration(D), p.acceleration(F)
-        rhs = _scaled(sq(n.omega), E - F, _scaled(sq(m.omega), E - D, aD - aF, -1.0))
-        em, en, _ = _cramer(U1, U2, rhs)
-        states[g.m] = m.with_acceleration(em, D, aD)
-        states[g.n] = n.with_acceleration(en, F, aF)
+        aD, aF = _acceleration(g.d.other, k, D), _acceleration(g.f.other, p, F)
+        rhs = _scaled(sq(n.omega), E - F, _scaled(sq(m.omega), E - D, _difference(aD, aF, len(D)), -1.0))
+        em, en, _ = _cramer(U1, U2, rhs, cross(U1, U2))
+        states[g.m] = m.with_acceleration(em, D, aD, own=True)
+        states[g.n] = n.with_acceleration(en, F, aF, own=True)
     elif form == "RRP":
         D, E, u = geo["D"], geo["E"], geo["uf"]
         s = sliding["f"]
+        if g.f.other == FRAME:      # a fixed guide: no acceleration of its points, no Coriolis term
+            aD = _acceleration(g.d.other, k, D)
+            rhs = _scaled(sq(m.omega), E - D, _difference(aD, None, len(D)), -1.0)
+            em, ds, _ = _cramer(U1, U2, rhs, cross(U1, U2))
+            states[g.m] = m.with_acceleration(em, D, aD, own=True)
+            states[g.n] = n.with_acceleration(p.epsilon, E, _scaled(ds, u))
+            return
         aD, aEp = k.acceleration(D), p.acceleration(E)
         rhs = _scaled(sq(m.omega), E - D, aD - aEp, -1.0) - cor(p.omega, s, u)
-        em, ds, _ = _cramer(U1, U2, rhs)
-        states[g.m] = m.with_acceleration(em, D, aD)
+        em, ds, _ = _cramer(U1, U2, rhs, cross(U1, U2))
+        states[g.m] = m.with_acceleration(em, D, aD, own=True)
         states[g.n] = n.with_acceleration(p.epsilon, E, _scaled(ds, u, aEp) + cor(p.omega, s, u))
     elif form == "RPR":
         D, F, u = geo["D"], geo["F"], geo["ue"]

@@ -10,6 +10,7 @@ Velocities and accelerations are then solved at the requested positions only.
 
 from __future__ import annotations
 
+import math
 from dataclasses import fields
 
 import numpy as np
@@ -185,8 +186,8 @@ def _set_drive_rates(mech: Mechanism, states: dict[str, LinkState], values: np.n
     s = states[d.link]
     if d.kind == DriveKind.ROTARY:
         pivot = np.broadcast_to(mech.links[FRAME].local[d.pivot], (n, 2))
-        s = s.with_velocity(np.full(n, d.speed), pivot, np.zeros((n, 2)))
-        s = s.with_acceleration(np.full(n, d.rate), pivot, np.zeros((n, 2)))
+        s = s.with_velocity(np.full(n, d.speed), pivot, None, own=True)       # the pivot is still
+        s = s.with_acceleration(np.full(n, d.rate), pivot, None, own=True)
     else:
         u = d.guide.direction
         s = s.with_velocity(np.zeros(n), s.origin, np.broadcast_to(d.speed * u, (n, 2)).copy())
@@ -424,16 +425,26 @@ def _branch(mech: Mechanism, links: tuple[str, str], options: list, sweeps: list
         return np.zeros(n, dtype=int)
     locals_ = [(name, mech.links[name].local[p], p) for name in links for p in mech.links[name].points]
     size = mech.size
-    start = np.array([sweeps[0][0]])
+    i = int(sweeps[0][0])
+    sketch = [float(v) for _, _, p in locals_ for v in mech.sketch[p]] + [size, 0.0, size, 0.0]
 
-    def signature(o) -> np.ndarray:
+    def signature(o) -> list[float]:
         # the links' points and orientations at the sketch: branches differ in one or the other
-        m, k = o.m.take(start), o.n.take(start)
-        pts = [(m if name == links[0] else k).point(x)[0] for name, x, _ in locals_]
-        turn = [size * np.array([np.cos(s.theta[0]), np.sin(s.theta[0])]) for s in (m, k)]
-        return np.concatenate(pts + turn)
+        # (in floats: one position, where numpy's per-call cost would dominate)
+        out, turn = [], []
+        for name, state in zip(links, (o.m, o.n)):
+            c, s = state._cos_sin
+            c, s = float(c[i]), float(s[i])
+            ox, oy = float(state.origin[i, 0]), float(state.origin[i, 1])
+            for link, x, _ in locals_:
+                if link == name:
+                    x0, y0 = float(x[0]), float(x[1])
+                    out += [ox + (c * x0 - s * y0), oy + (s * x0 + c * y0)]
+            theta = float(state.theta[i])
+            turn += [size * math.cos(theta), size * math.sin(theta)]
+        return out + turn
 
-    sketch = np.concatenate([mech.sketch[p] for _, _, p in locals_] + [np.array([size, 0.0, size, 0.0])])
     # an invalid option is never preferred over a valid one
-    cost = [float(np.sum((signature(o) - sketch) ** 2)) + (0.0 if o.valid[start[0]] else np.inf) for o in options]
+    cost = [sum((a - b) ** 2 for a, b in zip(signature(o), sketch)) + (0.0 if o.valid[i] else math.inf)
+            for o in options]
     return np.full(n, int(np.argmin(cost)), dtype=int)

@@ -142,14 +142,20 @@ class LinkState:
         w = self.omega
         return _spin(self.a, w, x - self.origin, w * w, self.epsilon)
 
-    def with_velocity(self, omega: np.ndarray, x: np.ndarray, v_x: np.ndarray) -> "LinkState":
-        """The state with ω and the velocity ``v_x`` of its point at ``x``."""
-        omega = np.broadcast_to(np.asarray(omega, float), self.theta.shape).copy()
+    def with_velocity(self, omega: np.ndarray, x: np.ndarray, v_x: np.ndarray | None, own: bool = False
+                      ) -> "LinkState":
+        """The state with ω and the velocity ``v_x`` (None: 0) of its point at ``x``; ``own``:
+        ``omega`` is a fresh float array of the state's shape, kept without a copy."""
+        if not own:
+            omega = np.broadcast_to(np.asarray(omega, float), self.theta.shape).copy()
         return self._keep_cos_sin(replace(self, omega=omega, v=_spin(v_x, omega, self.origin - x)))
 
-    def with_acceleration(self, epsilon: np.ndarray, x: np.ndarray, a_x: np.ndarray) -> "LinkState":
-        """The state with ε and the acceleration ``a_x`` of its point at ``x``."""
-        epsilon = np.broadcast_to(np.asarray(epsilon, float), self.theta.shape).copy()
+    def with_acceleration(self, epsilon: np.ndarray, x: np.ndarray, a_x: np.ndarray | None, own: bool = False
+                          ) -> "LinkState":
+        """The state with ε and the acceleration ``a_x`` (None: 0) of its point at ``x``; ``own``
+        as for :meth:`with_velocity`."""
+        if not own:
+            epsilon = np.broadcast_to(np.asarray(epsilon, float), self.theta.shape).copy()
         w = self.omega
         return self._keep_cos_sin(replace(self, epsilon=epsilon, a=_spin(a_x, w, self.origin - x, w * w, epsilon)))
 
