@@ -77,6 +77,10 @@ class GroupEquations:
         return np.concatenate([np.column_stack([states[n].origin, states[n].theta]) for n in self.links], axis=1)
 
     # -- equations -----------------------------------------------------------------------
+    def _point_a(self, pair, states: States) -> np.ndarray:
+        """A revolute pair's point on its link a (equal to the one on b, at a solution)."""
+        return states[pair.a].point(self.mech.links[pair.a].local[pair.point])
+
     def _geometry(self, pair, states: States):
         if pair.kind == "R":
             loc = self.mech.links
@@ -108,7 +112,7 @@ class GroupEquations:
         for k, pair in enumerate(self.pairs):
             r = 2 * k
             if pair.kind == "R":
-                xa, _ = self._geometry(pair, states)
+                xa = self._point_a(pair, states)
                 for link, sign in ((pair.a, 1.0), (pair.b, -1.0)):
                     if link in self.col:
                         c = self.col[link]
@@ -135,7 +139,7 @@ class GroupEquations:
         rows = []
         for pair in self.pairs:
             if pair.kind == "R":
-                xa, _ = self._geometry(pair, states)
+                xa = self._point_a(pair, states)
                 rows.append(states[pair.a].velocity(xa) - states[pair.b].velocity(xa))
                 continue
             p = pair.prismatic
@@ -150,7 +154,7 @@ class GroupEquations:
         rows = []
         for pair in self.pairs:
             if pair.kind == "R":
-                xa, _ = self._geometry(pair, states)
+                xa = self._point_a(pair, states)
                 rows.append(states[pair.a].acceleration(xa) - states[pair.b].acceleration(xa))
                 continue
             p = pair.prismatic
@@ -177,32 +181,42 @@ class GroupEquations:
                 m[:, 2 * k] *= self.size
         return m
 
-    def condition(self, states: States) -> np.ndarray:
-        """sign(det A)·σ_min/σ_max of the scaled Jacobian at every position (N,)."""
-        a = self._scaled(self.jacobian(states))
+    def scaled_jacobian(self, states: States) -> np.ndarray:
+        """A made dimensionless (see :meth:`_scaled`) at every position (N, 2·pairs, 3k): the
+        matrix of both rate solves and of the condition figure, which may share it."""
+        return self._scaled(self.jacobian(states))
+
+    def condition(self, states: States, a: np.ndarray | None = None) -> np.ndarray:
+        """sign(det A)·σ_min/σ_max of the scaled Jacobian at every position (N,); ``a``: that
+        Jacobian, when already at hand."""
+        if a is None:
+            a = self._scaled(self.jacobian(states))
         sv = np.linalg.svd(a, compute_uv=False)
         return np.sign(np.linalg.det(a)) * sv[:, -1] / sv[:, 0]
 
     # -- solves --------------------------------------------------------------------------
-    def _solve(self, states: States, rhs: np.ndarray) -> np.ndarray:
-        a = self._scaled(self.jacobian(states))
+    def _solve(self, states: States, rhs: np.ndarray, a: np.ndarray | None = None) -> np.ndarray:
+        if a is None:
+            a = self._scaled(self.jacobian(states))
         rhs = self._scale_rows(rhs.copy())
         x = np.linalg.solve(a, -rhs[..., None])[..., 0]
         x[:, 2::3] /= self.size
         return x
 
-    def velocities(self, states: dict[str, LinkState]) -> None:
-        """Solve the group's ω and v_o at every position (in place in ``states``)."""
-        self._rates(states, 1)
+    def velocities(self, states: dict[str, LinkState], a: np.ndarray | None = None) -> None:
+        """Solve the group's ω and v_o at every position (in place in ``states``); ``a``: the
+        scaled Jacobian at these poses (:meth:`scaled_jacobian`), when already at hand."""
+        self._rates(states, 1, a)
 
-    def accelerations(self, states: dict[str, LinkState]) -> None:
-        """Solve the group's ε and a_o at every position (in place in ``states``)."""
-        self._rates(states, 2)
+    def accelerations(self, states: dict[str, LinkState], a: np.ndarray | None = None) -> None:
+        """Solve the group's ε and a_o at every position (in place in ``states``); ``a`` as
+        for :meth:`velocities`."""
+        self._rates(states, 2, a)
 
-    def _rates(self, states: dict[str, LinkState], order: int) -> None:
+    def _rates(self, states: dict[str, LinkState], order: int, a: np.ndarray | None = None) -> None:
         zero = {**states, **{n: _with_rates(states[n], order) for n in self.links}}
         terms = self.velocity_terms(zero) if order == 1 else self.acceleration_terms(zero)
-        x = self._solve(zero, terms)
+        x = self._solve(zero, terms, a)
         for name, c in self.col.items():
             s = states[name]
             put = s.with_velocity if order == 1 else s.with_acceleration
@@ -249,6 +263,10 @@ def _with_rates(state: LinkState, order: int) -> LinkState:
     """The state with its unknown rates of ``order`` (1: ω, v; 2: ε, a) set to zero."""
     n = len(state.theta)
     if order == 1:
-        return LinkState(state.theta, state.origin, np.zeros(n), np.zeros((n, 2)))
-    return LinkState(state.theta, state.origin, state.omega, state.v, np.zeros(n), np.zeros((n, 2)))
+        out = LinkState(state.theta, state.origin, np.zeros(n), np.zeros((n, 2)))
+    else:
+        out = LinkState(state.theta, state.origin, state.omega, state.v, np.zeros(n), np.zeros((n, 2)))
+    if "_cos_sin" in state.__dict__:     # the same θ: its cos θ, sin θ as already computed
+        out.seeded(*state._cos_sin)
+    return out
 

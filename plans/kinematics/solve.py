@@ -51,18 +51,23 @@ def analyse(mech: Mechanism, structure: Structure, values: np.ndarray | None = N
     if order >= 1:
         _set_drive_rates(mech, states, values)
         sliding = {}
+        complex_ = {}     # per class III/IV group: its equations and scaled Jacobian (poses only: shared)
         for g in structure.groups:
             if isinstance(g, ComplexGroup):
-                sines[g.name] = group_condition(mech, g, states)
+                eq = GroupEquations(mech, g.links, g.pairs)
+                a = eq.scaled_jacobian(states)
+                complex_[g.name] = eq, a
+                sines[g.name] = special.condition(g, mech, states) if special.supports(g) else eq.condition(states, a)
                 _refuse_singular(mech, g, sines[g.name], values)
-                GroupEquations(mech, g.links, g.pairs).velocities(states)
+                eq.velocities(states, a)
                 continue
             sliding[g.name], sines[g.name] = velocities(g, mech, states)
             _refuse_singular(mech, g, sines[g.name], values)
         if order >= 2:
             for g in structure.groups:
                 if isinstance(g, ComplexGroup):
-                    GroupEquations(mech, g.links, g.pairs).accelerations(states)
+                    eq, a = complex_[g.name]
+                    eq.accelerations(states, a)
                 else:
                     accelerations(g, mech, states, sliding[g.name])
     return Motion(mechanism=mech, structure=structure, values=values, order=order, links=states, sines=sines)
