@@ -43,6 +43,10 @@ __all__ = ["CompiledGroup", "walk"]
 States = Mapping[str, LinkState]
 
 
+#: The constant factors of :meth:`CompiledGroup._reduced`, by the group's equations (a few groups).
+_REDUCED: dict = {}
+
+
 class CompiledGroup:
     """The pair equations of one group, with its known links' states over N positions."""
 
@@ -212,9 +216,19 @@ class CompiledGroup:
         once), for seeds already close to the solution; positions it does not bring below
         ``tol``·size within ``maxiter`` steps go on with :meth:`newton`. Converged positions
         take one more (polishing) step, kept when it does not raise the residual."""
-        phi, a = self.evaluate(q, idx)
+        reduced = self._reduced()
         try:
-            inv = np.linalg.inv(a)
+            if reduced is None:
+                phi, a = self.evaluate(q, idx)
+                inv = np.linalg.inv(a)
+
+                def step(phi):
+                    return (inv @ phi[..., None])[..., 0]
+            else:
+                # revolute pairs only: A = [T B] (columns reordered), T constant = Q·[R₁; 0]:
+                # only the k×k blocks Q₂ᵀB are inverted per position (see :meth:`_reduced`)
+                phi = self.evaluate(q, idx, jacobian=False)
+                step = self._block_solver(q)
         except np.linalg.LinAlgError:
             return self.newton(q, idx)
         q = q.copy()
@@ -239,7 +253,7 @@ class CompiledGroup:
             todo = ~polished
             if not todo.any() or it == maxiter + 1:
                 break
-            dx = (inv @ phi[..., None])[..., 0]
+            dx = step(phi)
             dx[:, 2::3] /= self.size
             q -= np.where(todo[:, None], dx, 0.0)
             phi = self.evaluate(q, idx, jacobian=False)
@@ -258,18 +272,88 @@ class CompiledGroup:
         the walk's crossing test only: the same sign, and the same value wherever the
         figure could be below ``floor``; elsewhere a lower bound of it (above ``floor``),
         σ_min ≥ |det A|·((n−1)/‖A‖_F²)^((n−1)/2) (Hong & Pan) and σ_max ≤ ‖A‖_F."""
-        _, a = self.evaluate(q, idx)
-        sign, logdet = np.linalg.slogdet(a)
         n = self.n
-        log_f = 0.5 * np.log(np.einsum("mij,mij->m", a, a))
+        reduced = self._reduced()
+        if reduced is None:
+            _, a = self.evaluate(q, idx)
+            sign, logdet = np.linalg.slogdet(a)
+            log_f = 0.5 * np.log(np.einsum("mij,mij->m", a, a))
+        else:
+            # revolute pairs only: A's translation columns T are constant, so with T = Q·[R; 0]
+            # (once), det A = c0·det(Q₂ᵀ·B), B the k angle columns (Q₂ᵀB: k×k per position)
+            c0_sign, c0_log, t_norm2, p_s, p_c = reduced
+            th = q[:, 2::3]
+            c, s = np.cos(th), np.sin(th)
+            det = np.linalg.det(c[:, None, :] * p_s - s[:, None, :] * p_c)
+            sign = c0_sign * np.sign(det)
+            b = c[:, None, :] * self._js - s[:, None, :] * self._jc
+            with np.errstate(divide="ignore"):
+                logdet = c0_log + np.log(np.abs(det))
+            log_f = 0.5 * np.log(t_norm2 + np.einsum("mij,mij->m", b, b))
         with np.errstate(all="ignore"):
             bound = np.exp(logdet + 0.5 * (n - 1) * (np.log(n - 1) - 2.0 * log_f) - log_f)
         bound = np.where(np.isfinite(bound), bound, 0.0)
         low = np.flatnonzero(bound < floor)
         if low.size:
-            sv = np.linalg.svd(a[low], compute_uv=False)
+            sv = np.linalg.svd(self.evaluate(q[low], idx[low])[1], compute_uv=False)
             bound[low] = sv[:, -1] / sv[:, 0]
         return sign * bound
+
+    def _block_solver(self, q: np.ndarray):
+        """x ↦ A⁻¹x (M, n) with A the scaled Jacobian at poses ``q`` of a revolute-only group."""
+        _, _, _, p_s, p_c = self._reduced_
+        q1t, r1_inv_t, q1_js, q1_jc = self._blocks
+        th = q[:, 2::3]
+        c, s = np.cos(th), np.sin(th)
+        c_inv = np.linalg.inv(c[:, None, :] * p_s - s[:, None, :] * p_c)    # (M, k, k)
+        g = c[:, None, :] * q1_js - s[:, None, :] * q1_jc                      # Q₁ᵀB (M, 2k, k)
+        cols = self.cols
+        k2 = len(cols)
+
+        def solve(phi: np.ndarray) -> np.ndarray:
+            z = phi @ q1t
+            x_b = np.einsum("mij,mj->mi", c_inv, z[:, k2:])
+            x_t = (z[:, :k2] - np.einsum("mij,mj->mi", g, x_b)) @ r1_inv_t
+            out = np.empty_like(phi)
+            out[:, cols] = x_t
+            out[:, 2::3] = x_b
+            return out
+        return solve
+
+    def _reduced(self):
+        """For a group of revolute pairs only (else None): the constant factor of det A
+        (its sign and log), ‖T‖_F² of the constant translation columns T, and Q₂ᵀ·Js, Q₂ᵀ·Jc,
+        Q₂ the orthogonal complement of T's columns (see :meth:`crossing_figure`)."""
+        if "_reduced_" in self.__dict__:
+            return self._reduced_
+        out = None
+        n, k = self.n, self.n // 3
+        key = (self.template.tobytes(), self._js.tobytes(), self._jc.tobytes()) if not self.prismatic else None
+        if key in _REDUCED:          # the same equations again (another call of the same mechanism)
+            self._reduced_, blocks = _REDUCED[key]
+            if blocks is not None:
+                self._blocks = blocks
+            return self._reduced_
+        if not self.prismatic:
+            order = self.cols + list(range(2, n, 3))
+            t = self.template[:, self.cols]
+            qm, r = np.linalg.qr(t, mode="complete")
+            diag = np.diag(r[:2 * k])
+            if np.all(np.abs(diag) > 1e-9 * max(1.0, float(np.max(np.abs(diag))))):
+                perm = np.eye(n)[:, order]
+                c0 = np.linalg.det(perm) * np.linalg.det(qm)
+                q2 = qm[:, 2 * k:]
+                out = (float(np.sign(c0) * np.prod(np.sign(diag))), float(np.sum(np.log(np.abs(diag)))),
+                       float(np.sum(t * t)), q2.T @ self._js, q2.T @ self._jc)
+                q1 = qm[:, :2 * k]
+                self._blocks = (np.ascontiguousarray(qm), np.ascontiguousarray(np.linalg.inv(r[:2 * k]).T),
+                                q1.T @ self._js, q1.T @ self._jc)
+        self._reduced_ = out
+        if key is not None:
+            if len(_REDUCED) >= 64:
+                _REDUCED.clear()
+            _REDUCED[key] = out, self.__dict__.get("_blocks")
+        return out
 
     def condition(self, q: np.ndarray, idx: np.ndarray) -> np.ndarray:
         """sign(det A)·σ_min/σ_max of the scaled Jacobian (as GroupEquations.condition)."""

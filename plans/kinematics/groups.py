@@ -269,6 +269,14 @@ def _cramer(U1: np.ndarray, U2: np.ndarray, rhs: np.ndarray, det: np.ndarray | N
     return cross(rhs, U2) / safe, cross(U1, rhs) / safe, sin
 
 
+def _cramer_known(sin: np.ndarray):
+    """:func:`_cramer` returning the ``sin`` already known instead of computing it again."""
+    def solve(U1: np.ndarray, U2: np.ndarray, rhs: np.ndarray):
+        x1, x2, _ = _cramer(U1, U2, rhs, cross(U1, U2))
+        return x1, x2, sin
+    return solve
+
+
 def _geometry(g: Group, mech: Mechanism, states: States) -> dict[str, np.ndarray]:
     """World positions of the group's pair points and guide directions."""
     geo: dict[str, np.ndarray] = {}
@@ -300,10 +308,16 @@ def _directions(g: Group, geo: dict[str, np.ndarray]) -> tuple[np.ndarray, np.nd
     return geo["ue"], geo["uf"]
 
 
-def conditioning(g: Group, mech: Mechanism, states: States) -> np.ndarray:
-    """sin of the angle between U1 and U2 (positions only): 0 at the form's singular position."""
-    U1, U2 = _directions(g, _geometry(g, mech, states))
-    return _cramer(U1, U2, np.zeros_like(U1))[2]
+def conditioning(g: Group, mech: Mechanism, states: States, keep: dict | None = None) -> np.ndarray:
+    """sin of the angle between U1 and U2 (positions only): 0 at the form's singular position.
+    ``keep``, when given, receives the geometry, U1, U2 and sin (for :func:`velocities` at
+    the same poses: see ``pre`` there)."""
+    geo = _geometry(g, mech, states)
+    U1, U2 = _directions(g, geo)
+    sin = _cramer(U1, U2, np.zeros_like(U1))[2]
+    if keep is not None:
+        keep.update(geo=geo, U1=U1, U2=U2, sin=sin)
+    return sin
 
 
 def _velocity(name: str, state: LinkState, x: np.ndarray) -> np.ndarray | None:
@@ -323,44 +337,51 @@ def _difference(a: np.ndarray | None, b: np.ndarray | None, n: int) -> np.ndarra
     return -b if a is None else a - b
 
 
-def velocities(g: Group, mech: Mechanism, states: dict[str, LinkState]) -> tuple[dict, np.ndarray]:
-    """Set ω and v of the group's links in ``states``; return the sliding speeds σ and sin."""
-    geo = _geometry(g, mech, states)
-    U1, U2 = _directions(g, geo)
+def velocities(g: Group, mech: Mechanism, states: dict[str, LinkState], pre: dict | None = None
+               ) -> tuple[dict, np.ndarray]:
+    """Set ω and v of the group's links in ``states``; return the sliding speeds σ and sin.
+    ``pre``: what :func:`conditioning` kept at these very poses (it is not computed again)."""
+    if pre is None:
+        geo = _geometry(g, mech, states)
+        U1, U2 = _directions(g, geo)
+        solve = _cramer
+    else:
+        geo, U1, U2 = pre["geo"], pre["U1"], pre["U2"]
+        solve = _cramer_known(pre["sin"])
     k, p = states[g.d.other], states[g.f.other]
     m, n = states[g.m], states[g.n]
     form = g.form
     if form == "RRR":
         D, E, F = geo["D"], geo["E"], geo["F"]
         vD, vF = _velocity(g.d.other, k, D), _velocity(g.f.other, p, F)
-        wm, wn, sin = _cramer(U1, U2, _difference(vD, vF, len(D)))
+        wm, wn, sin = solve(U1, U2, _difference(vD, vF, len(D)))
         states[g.m] = m.with_velocity(wm, D, vD, own=True)
         states[g.n] = n.with_velocity(wn, F, vF, own=True)
         return {"_geo": (geo, U1, U2)}, sin
     if form == "RRP":
         D, E, u = geo["D"], geo["E"], geo["uf"]
         vD, vEp = _velocity(g.d.other, k, D), _velocity(g.f.other, p, E)
-        wm, s, sin = _cramer(U1, U2, _difference(vD, vEp, len(D)))
+        wm, s, sin = solve(U1, U2, _difference(vD, vEp, len(D)))
         states[g.m] = m.with_velocity(wm, D, vD, own=True)
         states[g.n] = n.with_velocity(p.omega, E, _scaled(s, u, vEp))
         return {"f": s, "_geo": (geo, U1, U2)}, sin
     if form == "RPR":
         D, F, u = geo["D"], geo["F"], geo["ue"]
-        w, s, sin = _cramer(U1, U2, k.velocity(D) - p.velocity(F))
+        w, s, sin = solve(U1, U2, k.velocity(D) - p.velocity(F))
         states[g.m] = m.with_velocity(w, D, k.velocity(D))
         states[g.n] = n.with_velocity(w, F, p.velocity(F))
         return {"e": s}, sin
     if form == "PRP":
         E, u1, u2 = geo["E"], geo["ud"], geo["uf"]
         vEk, vEp = k.velocity(E), p.velocity(E)
-        s1, s2, sin = _cramer(U1, U2, vEk - vEp)
+        s1, s2, sin = solve(U1, U2, vEk - vEp)
         states[g.m] = m.with_velocity(k.omega, E, _scaled(s1, u1, vEk))
         states[g.n] = n.with_velocity(p.omega, E, _scaled(s2, u2, vEp))
         return {"d": s1, "f": s2}, sin
     # RPP
     D, uf = geo["D"], geo["uf"]
     vDp = p.velocity(D)
-    se, sf, sin = _cramer(U1, U2, k.velocity(D) - vDp)
+    se, sf, sin = solve(U1, U2, k.velocity(D) - vDp)
     states[g.m] = m.with_velocity(p.omega, D, k.velocity(D))
     states[g.n] = n.with_velocity(p.omega, D, _scaled(sf, uf, vDp))
     return {"e": se, "f": sf}, sin

@@ -46,7 +46,8 @@ def analyse(mech: Mechanism, structure: Structure, values: np.ndarray | None = N
     """Positions (order 0), velocities (1) and accelerations (2) at the drive ``values``
     (degrees for a crank, metres for a slider; the scene's values by default)."""
     values = np.asarray(mech.drive.values if values is None else values, dtype=float)
-    states = _reach(mech, structure, values)
+    pre: dict[str, dict] = {}      # per class II group, its geometry at the values when already solved
+    states = _reach(mech, structure, values, pre)
     sines: dict[str, np.ndarray] = {}
     if order >= 1:
         _set_drive_rates(mech, states, values)
@@ -61,7 +62,7 @@ def analyse(mech: Mechanism, structure: Structure, values: np.ndarray | None = N
                 _refuse_singular(mech, g, sines[g.name], values)
                 eq.velocities(states, a)
                 continue
-            sliding[g.name], sines[g.name] = velocities(g, mech, states)
+            sliding[g.name], sines[g.name] = velocities(g, mech, states, pre.get(g.name))
             _refuse_singular(mech, g, sines[g.name], values)
         if order >= 2:
             for g in structure.groups:
@@ -73,13 +74,14 @@ def analyse(mech: Mechanism, structure: Structure, values: np.ndarray | None = N
     return Motion(mechanism=mech, structure=structure, values=values, order=order, links=states, sines=sines)
 
 
-def _reach(mech: Mechanism, structure: Structure, values: np.ndarray) -> dict[str, LinkState]:
+def _reach(mech: Mechanism, structure: Structure, values: np.ndarray, pre: dict | None = None
+           ) -> dict[str, LinkState]:
     """Poses at ``values``: all in one walk from the sketch (moved by whole turns towards the
     values' median); when that walk fails, each angle alone, walked the short way round and
     then, if that passes a limit or singular position, the long way (a crank that cannot turn
     fully reaches an angle only from one side). An angle reachable neither way is reported
     as the short way's failure."""
-    fast = _direct(mech, structure, values)
+    fast = _direct(mech, structure, values, pre)
     if fast is not None:
         return fast
     try:
@@ -120,16 +122,17 @@ def group_condition(mech: Mechanism, g: ComplexGroup, states: dict[str, LinkStat
                                                                     np.arange(len(states[g.links[0]].theta)))
 
 
-def _grid_condition(mech: Mechanism, g: ComplexGroup, eq: GroupEquations, states: dict[str, LinkState]
-                    ) -> np.ndarray:
+def _grid_condition(mech: Mechanism, g: ComplexGroup, eq: GroupEquations, states: dict[str, LinkState],
+                    group: CompiledGroup | None = None) -> np.ndarray:
     """The condition figure along the walk, for :func:`_check_crossing`: a class III group's
     special points (cheap), else the compiled group's stand-in with the same sign and the
     same value wherever it is small."""
     if special.supports(g):
         return special.condition(g, mech, states)
-    known = {name: s for name, s in states.items() if name not in eq.col}
-    group = CompiledGroup(mech, eq.links, eq.pairs, known)
-    return group.crossing_figure(eq.pose(states), np.arange(len(next(iter(known.values())).theta)))
+    if group is None:     # the walk's own compiled group (the same known links), when at hand
+        known = {name: s for name, s in states.items() if name not in eq.col}
+        group = CompiledGroup(mech, eq.links, eq.pairs, known)
+    return group.crossing_figure(eq.pose(states), np.arange(group.n_pos))
 
 
 def _refuse_singular(mech: Mechanism, g, sin: np.ndarray, values: np.ndarray) -> None:
@@ -212,7 +215,8 @@ def _start(mech: Mechanism, values: np.ndarray) -> float:
     return start
 
 
-def _direct(mech: Mechanism, structure: Structure, values: np.ndarray) -> dict[str, LinkState] | None:
+def _direct(mech: Mechanism, structure: Structure, values: np.ndarray, pre: dict | None = None
+            ) -> dict[str, LinkState] | None:
     """Poses at ``values`` of a mechanism of class II groups only, without walking through
     every value: each group's assembly branch is the one the walk takes at its start (constant
     along a walk that crosses no singular position), and only that branch is solved, at the
@@ -241,14 +245,18 @@ def _direct(mech: Mechanism, structure: Structure, values: np.ndarray) -> dict[s
     high = values >= start
     before[high] = sweeps[0][np.searchsorted(up, values[high], side="right") - 1]
     before[~high] = sweeps[1][::-1][np.searchsorted(down, values[~high], side="left")]
+    kept: dict[str, dict] = {}
+    sin_at: dict[str, np.ndarray] = {}
     for g in structure.groups:
-        options = candidates(g, mech, {name: s.take(first) for name, s in states.items()}, tol)
-        branch = int(_branch(mech, g.links, options, [first])[0])
-        option = candidates(g, mech, states, tol, branch=branch)[0]
+        # every branch over all positions at once (one call: cheaper than solving the start
+        # alone first), the one the walk takes at its start kept
+        options = candidates(g, mech, states, tol)
+        option = options[int(_branch(mech, g.links, options, [first])[0])]
         if not option.valid.all():
             return None
         states[g.m], states[g.n] = option.m, option.n
-        sin = conditioning(g, mech, states)
+        keep: dict = {}
+        sin = conditioning(g, mech, states, keep)
         walk_sin, sin = sin[:k], sin[k:]
         try:
             _check_crossing(mech, g, walk_sin, grid, sweeps, ends)
@@ -256,7 +264,13 @@ def _direct(mech: Mechanism, structure: Structure, values: np.ndarray) -> dict[s
             return None
         if not np.all((np.abs(sin) >= SINGULAR_SIN) & (np.sign(sin) == np.sign(walk_sin[before]))):
             return None
+        kept[g.name] = keep
+        sin_at[g.name] = sin
     at = slice(k, None)
+    if pre is not None:    # the geometry at the values, for the velocity step (``pre`` of groups.velocities)
+        for name, keep in kept.items():
+            pre[name] = {"geo": {key: v[at] for key, v in keep["geo"].items()},
+                         "U1": keep["U1"][at], "U2": keep["U2"][at], "sin": sin_at[name]}
     return {name: s.take(at) for name, s in states.items()}
 
 
@@ -272,8 +286,9 @@ def _positions(mech: Mechanism, structure: Structure, values: np.ndarray, start:
     for g in structure.groups:
         if isinstance(g, ComplexGroup):
             eq = GroupEquations(mech, g.links, g.pairs)
-            states.update(_continue(mech, g, eq, states, grid, sweeps, values))
-            _check_crossing(mech, g, _grid_condition(mech, g, eq, states), grid, sweeps, values)
+            poses, compiled = _continue(mech, g, eq, states, grid, sweeps, values)
+            states.update(poses)
+            _check_crossing(mech, g, _grid_condition(mech, g, eq, states, compiled), grid, sweeps, values)
             continue
         options = candidates(g, mech, states, tol)
         choice = _branch(mech, g.links, options, sweeps)
@@ -319,35 +334,37 @@ def _check_crossing(mech: Mechanism, g, sin: np.ndarray, grid: np.ndarray, sweep
 
 
 def _continue(mech: Mechanism, g: ComplexGroup, eq: GroupEquations, states: dict[str, LinkState],
-              grid: np.ndarray, sweeps: list[np.ndarray], values: np.ndarray) -> dict[str, LinkState]:
-    """Poses of a class III/IV group along the walk: the fast continuation of
+              grid: np.ndarray, sweeps: list[np.ndarray], values: np.ndarray
+              ) -> tuple[dict[str, LinkState], CompiledGroup]:
+    """Poses of a class III/IV group along the walk (and its compiled equations): the fast continuation of
     :mod:`plans.kinematics.compiled` (coarse adaptive steps, then batched Newton at every
     grid position, then the walk's acceptance tests), or, when that is not sure of every
     position, the step-by-step walk (:func:`_walk`), which also reports any failure."""
-    q = _fast_walk(mech, eq, states, grid, sweeps)
+    q, group = _fast_walk(mech, eq, states, grid, sweeps)
     if q is None:
-        return _walk(mech, g, eq, states, grid, sweeps, values)
-    return {name: LinkState(q[:, c + 2], q[:, c:c + 2]) for name, c in eq.col.items()}
+        return _walk(mech, g, eq, states, grid, sweeps, values), group
+    return {name: LinkState(q[:, c + 2], q[:, c:c + 2]) for name, c in eq.col.items()}, group
 
 
 def _fast_walk(mech: Mechanism, eq: GroupEquations, states: dict[str, LinkState], grid: np.ndarray,
-               sweeps: list[np.ndarray]) -> np.ndarray | None:
-    """The group's poses (len(grid), 3k) by :func:`plans.kinematics.compiled.walk`, or None."""
+               sweeps: list[np.ndarray]) -> tuple[np.ndarray | None, CompiledGroup]:
+    """The group's poses (len(grid), 3k) by :func:`plans.kinematics.compiled.walk`, or None,
+    and its compiled equations."""
     known = {name: s for name, s in states.items() if name not in eq.col}
     group = CompiledGroup(mech, eq.links, eq.pairs, known)
     start = np.array([sweeps[0][0]])
     q0, _, conv, _ = group.newton(np.zeros((1, group.n)), start)
     if not conv[0]:
-        return None
+        return None, group
     q = np.empty((len(grid), group.n))
     q[start[0]] = q0[0]
     step = STEP_DEG if mech.drive.kind == DriveKind.ROTARY else mech.size / LINEAR_STEPS_PER_SIZE
     for sweep in sweeps:
         part = compiled_walk(group, sweep, grid[sweep], q[sweep[0]], step, JUMP_RATIO)
         if part is None:
-            return None
+            return None, group
         q[sweep] = part
-    return q
+    return q, group
 
 
 def _walk(mech: Mechanism, g: ComplexGroup, eq: GroupEquations, states: dict[str, LinkState],
