@@ -21,7 +21,7 @@ from .marks import arrow as _arrow, bounds, markup as _markup, vector as _vector
 from .scheme import scheme_layers
 from .sheet import FORMATS, TitleBlock, new_sheet
 from .style import Style
-from .svg import COINCIDE_MM as _COINCIDE_MM, Heading, _tag, plan_layers
+from .svg import COINCIDE_MM as _COINCIDE_MM, Heading, _tag, centre_rays, plan_layers
 from .text import wrap
 
 __all__ = ["draw_koshel", "PLAN_PANEL_MM", "STEP_TEXT_MM"]
@@ -51,15 +51,7 @@ def _scheme_side(dwg, canvas: Canvas, sheet: KoshelSheet, ident: str, style: Sty
         el.attribs["data-through"] = l.through
     dwg.add(cons)
     scheme_layers(dwg, canvas, sheet.scheme, f"{ident}-s", style)
-    rays = dwg.g(id=f"{ident}-proportion", stroke=red, stroke_width=fmt(style.thin, 3), fill="none")
-    rays.attribs["data-mu"] = repr(sheet.mu_l)
-    rays.attribs["data-plan"] = "centres"
-    rays.attribs["data-vectors"] = str(len(sheet.rays))
-    for k, r in enumerate(sheet.rays):
-        el = canvas.line(rays, r.start, r.end, id=f"{ident}-r{k}")
-        point, _, centre = r.quantity.partition(":")[2].partition("/")
-        _tag(el, canvas, r.quantity, r.value, r.start, r.end, centre, point)
-    dwg.add(rays)
+    dwg.add(centre_rays(dwg, canvas, sheet.rays, sheet.mu_l, ident=ident, group=f"{ident}-proportion", style=style))
     vs = dwg.g(id=f"{ident}-special", fill="none")
     vs.attribs["data-mu"] = repr(sheet.k_v)
     vs.attribs["data-plan"] = "bound"

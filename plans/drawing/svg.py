@@ -41,7 +41,7 @@ from .scheme import scheme_layers
 from .sheet import FORMATS, TitleBlock, choose_format, new_sheet, note_lines
 from .style import Style
 
-__all__ = ["Heading", "draw_plan", "draw_scheme", "draw_centres", "plan_layers", "fmt"]
+__all__ = ["Heading", "draw_plan", "draw_scheme", "draw_centres", "plan_layers", "centre_rays", "fmt"]
 
 #: Images closer than this share one label ("p ≡ b"), mm.
 COINCIDE_MM = 0.3
@@ -175,6 +175,20 @@ def draw_scheme(sch: Scheme, heading: Heading, *, formula: str, ident: str, styl
     return dwg.tostring()
 
 
+def centre_rays(dwg, canvas: Canvas, rays, mu_l: float, *, ident: str, group: str, style: Style, **attrs):
+    """The group of measured segments centre → point (``CentreRay``), each tagged so that
+    ``plans check`` reads length × μl = |X P| in metres; ``attrs`` style the group."""
+    g = dwg.g(id=group, stroke=style.component_colour, stroke_width=fmt(style.thin, 3), fill="none", **attrs)
+    g.attribs["data-mu"] = repr(mu_l)
+    g.attribs["data-plan"] = "centres"
+    g.attribs["data-vectors"] = str(len(rays))
+    for k, r in enumerate(rays):
+        el = canvas.line(g, r.start, r.end, id=f"{ident}-r{k}")
+        point, _, centre = r.quantity.partition(":")[2].partition("/")
+        _tag(el, canvas, r.quantity, r.value, r.start, r.end, centre, point)
+    return g
+
+
 def draw_centres(sheet: CentresSheet, heading: Heading, *, formula: str, ident: str, style: Style = Style()) -> str:
     """SVG text of the instantaneous-centres sheet: the scheme, the centres, the measured
     segments centre → point (tagged, length × μl = distance in m) and the construction lines."""
@@ -190,16 +204,8 @@ def draw_centres(sheet: CentresSheet, heading: Heading, *, formula: str, ident: 
         canvas.line(cons, a, b, id=f"{ident}-cl{k}")
     dwg.add(cons)
     scheme_layers(dwg, canvas, sheet.scheme, ident, style)
-    g = dwg.g(id=f"{ident}-centres", stroke=style.component_colour, stroke_width=fmt(style.thin, 3),
-              stroke_dasharray=style.dash, fill="none")
-    g.attribs["data-mu"] = repr(sheet.mu_l)
-    g.attribs["data-plan"] = "centres"
-    g.attribs["data-vectors"] = str(len(sheet.rays))
-    for k, r in enumerate(sheet.rays):
-        el = canvas.line(g, r.start, r.end, id=f"{ident}-r{k}")
-        point, _, centre = r.quantity.partition(":")[2].partition("/")
-        _tag(el, canvas, r.quantity, r.value, r.start, r.end, centre, point)
-    dwg.add(g)
+    dwg.add(centre_rays(dwg, canvas, sheet.rays, sheet.mu_l, ident=ident, group=f"{ident}-centres", style=style,
+                        stroke_dasharray=style.dash))
     labels = dwg.g(id=f"{ident}-marks", fill=style.component_colour)
     for k, m in enumerate(sheet.marks):
         if m.xy is not None:
