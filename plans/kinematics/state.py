@@ -84,17 +84,11 @@ def _spin(v: np.ndarray | None, w: np.ndarray, r: np.ndarray, w2: np.ndarray | N
     out = _pair(len(r))
     if e is None:
         x, y = w * ry, w * rx
-        if v is None:
-            np.negative(x, out=out[:, 0])
-            out[:, 1] = y
-        else:
-            np.subtract(v[:, 0], x, out=out[:, 0])
-            np.add(v[:, 1], y, out=out[:, 1])
-        return out
-    x = e * ry
-    x += w2 * rx
-    y = e * rx
-    y -= w2 * ry
+    else:
+        x = e * ry
+        x += w2 * rx
+        y = e * rx
+        y -= w2 * ry
     if v is None:
         np.negative(x, out=out[:, 0])
         out[:, 1] = y
@@ -206,6 +200,14 @@ class Motion:
     def acceleration(self, point: str, link: str | None = None) -> np.ndarray:
         link = link or self.carrier(point)
         return self.links[link].acceleration(self.position(point, link))
+
+    @cached_property
+    def sliding(self) -> dict:
+        """Every prismatic pair's sliding (:func:`plans.kinematics.sliders.sliding`), computed
+        once for all the plans and the report that read it."""
+        from .sliders import sliding   # sliders reads Motion: imported here, not at the top
+
+        return sliding(self)
 
     def __len__(self) -> int:
         return len(self.values)
