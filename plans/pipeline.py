@@ -32,7 +32,7 @@ from .errors import ConstructionError, OutputError, PlansError
 from .export import DEFAULT_DPI, convert, parse_formats, require_cairo
 from .kinematics import WARN_SIN, Motion, analyse, singular, special
 from .kinematics.centres import Centres, centres
-from .kinematics.sliders import link_angles, sliding
+from .kinematics.sliders import link_angles
 from .output import check_folder, write_files
 from .model import build_mechanism
 from .scene import Scene, read_scene, DriveKind
@@ -160,7 +160,7 @@ def report(scene: Scene, motion: Motion, scales: Scales, solutions: dict | None 
     v = {p: motion.velocity(p) for p in mech.sketch} if motion.order >= 1 else {}
     a = {p: motion.acceleration(p) for p in mech.sketch} if motion.order >= 2 else {}
     angles = link_angles(motion)
-    slides = sliding(motion)
+    slides = motion.sliding
     for i, value in enumerate(motion.values):
         points = {}
         for p in mech.sketch:

@@ -64,7 +64,7 @@ import numpy as np
 
 from ..errors import ConstructionError
 from ..kinematics import Motion, special
-from ..kinematics.sliders import Sliding, sliding
+from ..kinematics.sliders import Sliding
 from ..kinematics.state import J
 from ..scene import FRAME, DriveKind
 from ..structure import ComplexGroup
@@ -272,7 +272,6 @@ class _Builder:
         self.lines: list[ConstructionLine] = []
         self.extra: dict[str, np.ndarray] = {}   # constructed points (special points S1…): world position
         self.optional: set[str] = set()          # relative vectors left out where an absolute one draws them
-        self._sliding: dict[str, Sliding] | None = None
 
     def put(self, key: tuple, label: str, xy) -> tuple[float, float]:
         """Record an image (first one wins) under ``key``, printed as ``label``."""
@@ -338,9 +337,7 @@ class _Builder:
     def slide(self, slider: str, guide: str) -> Sliding:
         """The kinematics' sliding of ``slider`` along ``guide`` (the first such pair, as
         the plans take it)."""
-        if self._sliding is None:
-            self._sliding = sliding(self.motion)
-        return next(s for s in self._sliding.values() if s.slider == slider and s.guide == guide)
+        return next(s for s in self.motion.sliding.values() if s.slider == slider and s.guide == guide)
 
     def image(self, point: str, link: str) -> tuple[float, float]:
         key = self.image_key(point, link)
