@@ -149,7 +149,9 @@ def test_peer_comparison_agrees_or_says_how_to_install(bench):
             assert x["max_dv"] < 1e-10 and x["max_da"] < 1e-9
 
 
-def test_peer_comparison_is_skipped_without_pylinkage(monkeypatch):
+@pytest.fixture
+def without_pylinkage(monkeypatch):
+    """Imports of pylinkage fail, as in an install without the bench extra."""
     real = builtins.__import__
 
     def no_pylinkage(name, *args, **kwargs):
@@ -158,6 +160,9 @@ def test_peer_comparison_is_skipped_without_pylinkage(monkeypatch):
         return real(name, *args, **kwargs)
 
     monkeypatch.setattr(builtins, "__import__", no_pylinkage)
+
+
+def test_peer_comparison_is_skipped_without_pylinkage(without_pylinkage):
     s = peer_comparison(QUICK)
     assert s.skipped and 'pip install ".[bench]"' in s.skipped and not s.rows and not s.charts
 
@@ -197,15 +202,7 @@ def test_numba_comparison_times_both_pylinkage_paths_or_says_not_installed(bench
     assert any(h.startswith("crank-slider full kinematics") for h in report["headlines"])
 
 
-def test_numba_comparison_runs_without_pylinkage(monkeypatch):
-    real = builtins.__import__
-
-    def no_pylinkage(name, *args, **kwargs):
-        if name == "pylinkage" or name.startswith("pylinkage."):
-            raise ImportError("No module named 'pylinkage'")
-        return real(name, *args, **kwargs)
-
-    monkeypatch.setattr(builtins, "__import__", no_pylinkage)
+def test_numba_comparison_runs_without_pylinkage(without_pylinkage):
     s = numba_comparison(QUICK)
     assert not s.skipped and len(s.rows) == len(QUICK.numba_positions)
     for x in s.records():
