@@ -23,7 +23,7 @@ __all__ = ["main"]
 def _table(r: Rendered) -> str:
     m = r.motion
     mech = m.mechanism
-    unit = "deg" if mech.drive.kind == DriveKind.ROTARY else "m"
+    unit = "deg" if mech.drive.kind.angular else "m"
     lines = [f"{r.stem}: {m.structure.formula}   μl = {r.scales.mu_l:g} m/mm"
              + (f", μV = {r.scales.mu_v:g} (m/s)/mm" if r.scales.mu_v else "")
              + (f", μa = {r.scales.mu_a:g} (m/s²)/mm" if r.scales.mu_a else "")]

@@ -91,8 +91,10 @@ class Prismatic:
 
 @dataclass(frozen=True)
 class DriveSpec:
-    """The driving link: ``pivot`` and ``tip`` for a crank (angle of pivot → tip), or ``guide``
-    for a slider driven along a frame guide."""
+    """The driving link: ``pivot`` and ``tip`` for a crank (angle of pivot → tip) or a coupler
+    (its absolute angle, of the line from its first point ``pivot`` to its second ``tip``; the
+    pivot is then not on the frame), or ``guide`` for a slider driven along a guide on the frame
+    or, for a hydraulic cylinder, on a moving link (``guide.guide``)."""
 
     link: str
     kind: DriveKind
@@ -102,7 +104,7 @@ class DriveSpec:
     pivot: str | None = None
     tip: str | None = None
     guide: Prismatic | None = None
-    sketch_value: float = 0.0   # the drive's value in the sketch: degrees for a crank, 0 m for a slider
+    sketch_value: float = 0.0   # the drive's value in the sketch: degrees for a crank or coupler, 0 m for a slider
 
 
 @dataclass(frozen=True)
@@ -259,20 +261,24 @@ def _drive(scene: Scene, links: Mapping[str, Link], prismatics: tuple[Prismatic,
            sketch: Mapping[str, np.ndarray]) -> DriveSpec:
     d = scene.drive
     link = links[d.link]
-    if d.kind == DriveKind.LINEAR:
-        guide = next(p for p in prismatics if p.slider == d.link and p.guide == FRAME)
-        return DriveSpec(link=d.link, kind=DriveKind.LINEAR, values=d.values, speed=d.speed, rate=d.rate, guide=guide)
+    if not d.kind.angular:
+        guide = next(p for p in prismatics if p.slider == d.link and p.guide == d.along)
+        return DriveSpec(link=d.link, kind=d.kind, values=d.values, speed=d.speed, rate=d.rate, guide=guide)
     frame_points = set(links[FRAME].points)
     pivots = [p for p in link.points if p in frame_points]
-    if len(pivots) != 1:
-        raise SceneError(f"the driving link {d.link} must be pivoted on the frame at exactly one point "
-                         f"(a point listed in both links 0 and {d.link}); found {len(pivots)}", key="drive.link")
-    pivot = pivots[0]
+    if len(pivots) > 1:
+        raise SceneError(f"the driving link {d.link} is pinned to the frame at {len(pivots)} points "
+                         f"({', '.join(pivots)}) and cannot turn; drive a crank (one point listed in both "
+                         f"links 0 and {d.link}) or a coupler (none)", key="drive.link")
+    kind = DriveKind.ROTARY if pivots else DriveKind.COUPLER
+    pivot = pivots[0] if pivots else link.points[0]
     others = [p for p in link.points if p != pivot]
     if not others:
-        raise SceneError(f"the driving link {d.link} has only its pivot {pivot}; add the crank pin "
-                         "(its angle is measured pivot → that point)", key=f"links.{d.link}")
+        what = (f"only its pivot {pivot}; add the crank pin (its angle is measured pivot → that point)"
+                if pivots else f"one point, {pivot}; a coupler's angle is that of the line from its first "
+                "point to its second: list two")
+        raise SceneError(f"the driving link {d.link} has {what}", key=f"links.{d.link}")
     tip = others[0]
     arm = sketch[tip] - sketch[pivot]
-    return DriveSpec(link=d.link, kind=DriveKind.ROTARY, values=d.values, speed=d.speed, rate=d.rate, pivot=pivot, tip=tip,
+    return DriveSpec(link=d.link, kind=kind, values=d.values, speed=d.speed, rate=d.rate, pivot=pivot, tip=tip,
                      sketch_value=math.degrees(math.atan2(arm[1], arm[0])))

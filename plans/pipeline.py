@@ -35,7 +35,7 @@ from .kinematics.centres import Centres, centres
 from .kinematics.sliders import link_angles
 from .output import check_folder, write_files
 from .model import build_mechanism
-from .scene import Scene, read_scene, DriveKind
+from .scene import Scene, read_scene
 from .structure import ComplexGroup, analyse_structure
 
 __all__ = ["Rendered", "Sheet", "Sheets", "render", "render_scene", "report", "solve_scene"]
@@ -70,7 +70,7 @@ def _scales(scene: Scene, motion: Motion, rest: tuple[bool, bool] = (False, Fals
     pts = np.stack([motion.position(p) for p in mech.sketch], axis=1)  # (N, P, 2)
     v_ref = a_ref = None
     v_ext = a_ext = 0.0
-    ref_point = mech.drive.tip if mech.drive.kind == DriveKind.ROTARY else mech.drive.guide.label
+    ref_point = mech.drive.tip if mech.drive.kind.angular else mech.drive.guide.label
     if motion.order >= 1 and not rest[0]:
         vel = np.stack([motion.velocity(p) for p in mech.sketch], axis=1)
         v_ref = float(np.max(np.linalg.norm(motion.velocity(ref_point), axis=1)))
@@ -122,8 +122,8 @@ def _rest_note(motion: Motion, kind: str) -> str:
     what = "velocities are" if kind == "velocity" else "accelerations are"
     if d.speed != 0.0 or (kind == "acceleration" and d.rate != 0.0):
         return f"all {what} zero at every position, every image is at the pole"
-    drive = ("ω1 = 0" if d.kind == DriveKind.ROTARY else "v = 0") if kind == "velocity" else \
-        ("ω1 = 0, ε1 = 0" if d.kind == DriveKind.ROTARY else "v = 0, a = 0")
+    drive = (f"ω{d.link} = 0" if d.kind.angular else "v = 0") if kind == "velocity" else \
+        (f"ω{d.link} = 0, ε{d.link} = 0" if d.kind.angular else "v = 0, a = 0")
     what = "velocities are" if kind == "velocity" else "velocities and accelerations are"
     return f"the mechanism is at rest ({drive}): all {what} zero, every image is at the pole"
 
@@ -142,7 +142,8 @@ def _suffix(motion: Motion, i: int) -> str:
 def _position_label(motion: Motion, i: int) -> str:
     v = motion.values[i]
     d = motion.mechanism.drive
-    return f"φ_1 = {v:g}°, ω_1 = {d.speed:g} rad/s, ε_1 = {d.rate:g} rad/s²" if d.kind == DriveKind.ROTARY else \
+    j = d.link
+    return f"φ_{j} = {v:g}°, ω_{j} = {d.speed:g} rad/s, ε_{j} = {d.rate:g} rad/s²" if d.kind.angular else \
         f"s = {v:g} m, v = {d.speed:g} m/s, a = {d.rate:g} m/s²"
 
 
@@ -151,7 +152,7 @@ def report(scene: Scene, motion: Motion, scales: Scales, solutions: dict | None 
     """The JSON report: structure and, per position, points, links, scales, conditioning,
     instantaneous centres and the special points of class III groups (SI)."""
     mech = motion.mechanism
-    key = "angle" if mech.drive.kind == DriveKind.ROTARY else "displacement"
+    key = "angle" if mech.drive.kind.angular else "displacement"
     positions = []
     ic = centres(motion) if ic is None and motion.order >= 1 else ic
     solutions = special.triads(motion) if solutions is None else solutions
@@ -264,7 +265,7 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
                         f"plan{'s are sheets' if len(resting) > 1 else ' is a sheet'} saying so")
     ic = centres(motion) if motion.order >= 1 else None
     formula = motion.structure.formula
-    unit = "°" if motion.mechanism.drive.kind == DriveKind.ROTARY else " m"
+    unit = "°" if motion.mechanism.drive.kind.angular else " m"
     for i in range(len(motion)):
         sfx = _suffix(motion, i)
         label = _position_label(motion, i)

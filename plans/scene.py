@@ -99,20 +99,35 @@ class Slider:
 
 
 class DriveKind(StrEnum):
-    """How the drive moves: a crank turning about a frame pivot, or a slider on a frame guide."""
+    """How the drive moves: a crank turning about a frame pivot, a slider on a frame guide,
+    a link not pivoted on the frame whose absolute angle is given (a coupler), or a linear
+    motor between two moving links (a hydraulic cylinder: the rod slides in the cylinder)."""
 
     ROTARY = "rotary"
     LINEAR = "linear"
+    COUPLER = "coupler"
+    CYLINDER = "cylinder"
+
+    @property
+    def angular(self) -> bool:
+        """True when the drive's values are angles (degrees; ω, ε), False for strokes (m; v, a)."""
+        return self in (DriveKind.ROTARY, DriveKind.COUPLER)
+
+    @property
+    def unit(self) -> str:
+        return "deg" if self.angular else "m"
 
 
 @dataclass(frozen=True)
 class Drive:
     """The driving link and its law of motion.
 
-    ``kind`` is :attr:`DriveKind.ROTARY` (``values`` are angles in degrees, ``speed`` ω in rad/s,
-    ``rate`` ε in rad/s², CCW positive) or :attr:`DriveKind.LINEAR` (a slider on the frame; ``values``
-    are displacements in metres along its guide from the sketch position, ``speed`` in
-    m/s, ``rate`` in m/s²).
+    ``kind`` is :attr:`DriveKind.ROTARY` or :attr:`DriveKind.COUPLER` (``values`` are angles in
+    degrees, ``speed`` ω in rad/s, ``rate`` ε in rad/s², CCW positive; a coupler's angle is its
+    absolute angle, of the line from its first point to its second) or :attr:`DriveKind.LINEAR` /
+    :attr:`DriveKind.CYLINDER` (``values`` are displacements in metres of the link along its
+    guide from the sketch position, ``speed`` in m/s, ``rate`` in m/s²; the guide is on the frame,
+    or on link ``along`` for a cylinder, and the motion is relative to it).
     """
 
     link: str
@@ -120,10 +135,11 @@ class Drive:
     values: tuple[float, ...]
     speed: float
     rate: float
+    along: str = FRAME
 
     @property
     def unit(self) -> str:
-        return "deg" if self.kind == DriveKind.ROTARY else "m"
+        return self.kind.unit
 
 
 @dataclass(frozen=True)
@@ -466,20 +482,30 @@ def _drive(table: Mapping[str, Any], links: Mapping[str, Any], sliders: tuple[Sl
     if link == FRAME:
         raise SceneError("the frame cannot be the driving link", key="drive.link")
     rotary_keys, linear_keys = {"angle", "omega", "epsilon"}, {"displacement", "velocity", "acceleration"}
-    extra = sorted(str(k) for k in set(table) - rotary_keys - linear_keys - {"link"})
+    extra = sorted(str(k) for k in set(table) - rotary_keys - linear_keys - {"link", "along"})
     if extra:
         raise SceneError(f"unknown key {extra[0]!r}", key=f"drive.{extra[0]}")
     if set(table) & rotary_keys and set(table) & linear_keys:
         raise SceneError("mixes a rotary drive (angle, omega) with a linear one (displacement, velocity)",
                          key="drive")
+    along = _link_ref(table["along"], "drive.along", links, "guide link") if "along" in table else FRAME
+    if along == link:
+        raise SceneError("a link cannot be driven along itself; `along` names the link carrying its guide "
+                         "(the cylinder of a hydraulic drive)", key="drive.along")
     if "displacement" in table or "velocity" in table:
         kind, pos_key, speed_key, rate_key = DriveKind.LINEAR, "displacement", "velocity", "acceleration"
-        if not any(s.link == link and s.on == FRAME for s in sliders):
-            raise SceneError(f"a linear drive needs link {link} to slide on the frame: add a [[sliders]] "
-                             f'with link = "{link}", on = "0"', key="drive.link")
+        if along != FRAME:
+            kind = DriveKind.CYLINDER
+        if not any(s.link == link and s.on == along for s in sliders):
+            where = "on the frame" if along == FRAME else f"in link {along}"
+            raise SceneError(f"a linear drive needs link {link} to slide {where}: add a [[sliders]] "
+                             f'with link = "{link}", on = "{along}"', key="drive.link")
         pos_bound, pos_why = MAX_COORD_M, _COORD_WHY
         bounds = ((MAX_SPEED, "m/s"), (MAX_ACCELERATION, "m/s²"))
     else:
+        if along != FRAME:
+            raise SceneError("`along` names the cylinder of a linear drive (displacement, velocity); an angle "
+                             "drive has none: remove it", key="drive.along")
         kind, pos_key, speed_key, rate_key = DriveKind.ROTARY, "angle", "omega", "epsilon"
         pos_bound, pos_why = MAX_ANGLE_DEG, "° (about 2800 turns; beyond that a double cannot hold the angle exactly)"
         bounds = ((MAX_OMEGA, "rad/s"), (MAX_EPSILON, "rad/s²"))
@@ -505,7 +531,7 @@ def _drive(table: Mapping[str, Any], links: Mapping[str, Any], sliders: tuple[Sl
         if 0.0 < abs(x) < MIN_RATE:
             raise SceneError(f"{x:g} {unit}{when} is too small to compute with: give 0 (at rest) or at least "
                              f"{MIN_RATE:g} {unit} in magnitude", key=f"drive.{k}")
-    return Drive(link=link, kind=kind, values=values, speed=speed, rate=rate)
+    return Drive(link=link, kind=kind, values=values, speed=speed, rate=rate, along=along)
 
 
 def _rate(value: Any, key: str, bound: float, unit: str) -> float:
@@ -519,7 +545,7 @@ def _walk(kind: DriveKind, values: tuple[float, ...], points: Mapping[str, tuple
     MAX_WALK_STEPS steps (kinematics/solve.py ``_grid``: a crank's walk starts within half a turn
     of the values' median and steps 1°; a slider's starts at 0 and steps size/200)."""
     lo, hi = min(values), max(values)
-    if kind == DriveKind.ROTARY:
+    if kind.angular:
         step, unit = STEP_DEG, "°"
         steps = (hi - lo + 360.0) / step
     else:
@@ -527,10 +553,10 @@ def _walk(kind: DriveKind, values: tuple[float, ...], points: Mapping[str, tuple
         step, unit = size / LINEAR_STEPS_PER_SIZE, " m"
         steps = (max(hi, 0.0) - min(lo, 0.0)) / step
     if steps > MAX_WALK_STEPS:
-        reach = (MAX_WALK_STEPS - (360.0 if kind == DriveKind.ROTARY else 0.0)) * step
+        reach = (MAX_WALK_STEPS - (360.0 if kind.angular else 0.0)) * step
         raise SceneError(f"values from {lo:g} to {hi:g}{unit} need a walk of {steps:.3g} steps of {step:.3g}{unit} "
                          f"from the sketch (the solver follows the mechanism step by step); keep them within a span of "
-                         f"{reach:.4g}{unit}" + ("" if kind == DriveKind.ROTARY else " including 0 (the sketch)"), key=key)
+                         f"{reach:.4g}{unit}" + ("" if kind.angular else " including 0 (the sketch)"), key=key)
 
 
 def _lengths(table: Mapping[str, Any], points: Mapping[str, Any],

@@ -29,7 +29,8 @@ from .errors import StructureError
 from .model import Mechanism, Prismatic
 from .scene import FRAME, DriveKind
 
-__all__ = ["Joint", "Group", "Pair", "Rod", "ComplexGroup", "Structure", "analyse_structure", "FORMS"]
+__all__ = ["Joint", "Group", "Pair", "Rod", "ComplexGroup", "DrivenGroup", "Structure", "analyse_structure", "FORMS",
+           "MAX_DRIVEN_LINKS"]
 
 #: The five forms of class II groups (outer pair D of link m, inner pair E, outer pair F of n).
 FORMS = ("RRR", "RRP", "RPR", "PRP", "RPP")
@@ -89,7 +90,11 @@ class Group:
 
 @dataclass(frozen=True)
 class Structure:
-    """W, the original mechanism and the groups in the order they are attached (and solved)."""
+    """W, the original mechanism and the groups in the order they are attached (and solved).
+
+    ``driven``: for a drive inside the chain (a coupler's angle, a hydraulic cylinder), the
+    original mechanism's links solved together with the drive (:class:`DrivenGroup`); None for
+    a crank or a slider on the frame (the original mechanism is the frame and that link)."""
 
     dof: int
     moving: int
@@ -97,19 +102,28 @@ class Structure:
     p4: int
     drive: str
     groups: tuple["Group | ComplexGroup", ...]
+    driven: "DrivenGroup | None" = None
 
     @property
     def klass(self) -> int:
         return max((g.klass for g in self.groups), default=1)
 
     @property
+    def original(self) -> str:
+        """The original mechanism, as the structural formula writes it: I(0-1), I(0-1-2-3)."""
+        return self.driven.name if self.driven is not None else f"I({FRAME}-{self.drive})"
+
+    @property
     def formula(self) -> str:
-        return " ← ".join([f"I({FRAME}-{self.drive})", *(g.name for g in self.groups)])
+        return " ← ".join([self.original, *(g.name for g in self.groups)])
 
     def as_dict(self) -> dict:
-        return {"dof": self.dof, "class": self.klass, "formula": self.formula,
-                "moving_links": self.moving, "p5": self.p5, "p4": self.p4,
-                "groups": [g.as_dict() for g in self.groups]}
+        out = {"dof": self.dof, "class": self.klass, "formula": self.formula,
+               "moving_links": self.moving, "p5": self.p5, "p4": self.p4,
+               "groups": [g.as_dict() for g in self.groups]}
+        if self.driven is not None:
+            out["original_mechanism"] = self.driven.as_dict()
+        return out
 
 
 def analyse_structure(mech: Mechanism) -> Structure:
@@ -128,15 +142,17 @@ def analyse_structure(mech: Mechanism) -> Structure:
         raise StructureError(f"W = 3·{n} − 2·{p5} − {p4} = {dof}, but the scene has 1 drive: {hint}", key="links")
     drive = mech.drive.link
     _check_original_mechanism(mech)
-    groups = _decompose(_Index(mech), mech)
-    return Structure(dof=dof, moving=n, p5=p5, p4=p4, drive=drive, groups=tuple(groups))
+    ix = _Index(mech)
+    driven = _driven_group(ix, mech) if mech.drive.kind in (DriveKind.COUPLER, DriveKind.CYLINDER) else None
+    groups = _decompose(ix, mech, {FRAME, *(driven.links if driven else (drive,))})
+    return Structure(dof=dof, moving=n, p5=p5, p4=p4, drive=drive, groups=tuple(groups), driven=driven)
 
 
-def _decompose(ix: "_Index", mech: Mechanism) -> list["Group | ComplexGroup"]:
-    """The Assur groups in the order they attach to the frame and the driving link."""
-    drive = mech.drive.link
-    known = {FRAME, drive}
-    remaining = {name for name in mech.moving if name != drive}
+def _decompose(ix: "_Index", mech: Mechanism, known: set[str] | None = None) -> list["Group | ComplexGroup"]:
+    """The Assur groups in the order they attach to the ``known`` links: the frame and the
+    original mechanism (by default the driving link)."""
+    known = {FRAME, mech.drive.link} if known is None else set(known)
+    remaining = {name for name in mech.moving if name not in known}
     frontier = {x for k in known for x in ix.neighbours[k] if x in remaining}   # remaining links next to known ones
     groups: list[Group | ComplexGroup] = []
     while remaining:
@@ -186,8 +202,50 @@ def _check_original_mechanism(mech: Mechanism) -> None:
     d = mech.drive
     if d.kind == DriveKind.ROTARY:
         return  # the pivot on the frame is checked when the model is built
-    if not any(p.slider == d.link and p.guide == FRAME for p in mech.prismatics):
-        raise StructureError(f"the driving slider {d.link} has no guide on the frame", key="drive.link")
+    if d.kind == DriveKind.COUPLER:
+        if any(FRAME in (p.slider, p.guide) and d.link in (p.slider, p.guide) for p in mech.prismatics):
+            raise StructureError(f"the driving link {d.link} slides on the frame, so its angle cannot change: "
+                                 "drive it by a displacement, or drive another link", key="drive.link")
+        return
+    along = d.guide.guide if d.guide is not None else FRAME
+    if not any(p.slider == d.link and p.guide == along for p in mech.prismatics):
+        where = "on the frame" if along == FRAME else f"in link {along}"
+        raise StructureError(f"the driving slider {d.link} has no guide {where}", key="drive.link")
+
+
+#: Most links solved together with a drive inside the chain (:class:`DrivenGroup`): the
+#: original mechanism of a coupler drive on a six-bar has 3 to 5; the search over connected
+#: link sets stops beyond this.
+MAX_DRIVEN_LINKS = 6
+
+
+def _driven_group(ix: "_Index", mech: Mechanism) -> "DrivenGroup":
+    """The original mechanism of a drive inside the chain: the fewest links, connected, holding
+    the driven link (and a cylinder's guide link), that are fixed by their pairs (among
+    themselves and with the frame) together with the drive's one given coordinate:
+    3·n − 2·p = 1. Ties go to the first in [links] order."""
+    d = mech.drive
+    core = frozenset({d.link} | ({d.guide.guide} if d.kind == DriveKind.CYLINDER else set()))
+    level = {core}
+    while level:
+        fits = []
+        for links in level:
+            pairs = ix.pairs_of(set(links), set(links) | {FRAME})
+            if 3 * len(links) - 2 * len(pairs) == 1 and len(ix.components(set(links))) == 1 \
+                    and any(FRAME in (p.a, p.b) for p in pairs):
+                fits.append(tuple(sorted(links, key=ix.rank.__getitem__)))
+        if fits:
+            links = min(fits, key=lambda t: [ix.rank[x] for x in t])
+            inner = ix.pairs_of(set(links), set(links))
+            outer = ix.pairs_of(set(links), {FRAME})
+            return DrivenGroup(links=links, inner=tuple(inner), outer=tuple(outer), drive=d.link)
+        if len(next(iter(level))) >= MAX_DRIVEN_LINKS:
+            break
+        level = {links | {x} for links in level for k in links for x in ix.adjacent[k] if x != FRAME and x not in links}
+    what = f"link {d.link}" if d.kind == DriveKind.COUPLER else f"links {d.guide.guide} and {d.link}"
+    raise StructureError(f"no set of up to {MAX_DRIVEN_LINKS} links with {what} is fixed by its pairs and the "
+                         "drive's one coordinate (3n − 2p = 1): the drive does not move the chain; check its "
+                         "pairs, or drive a crank on the frame", key="drive.link")
 
 
 class _Index:
@@ -399,6 +457,43 @@ class ComplexGroup:
             out["base_link"] = self.base
             out["rods"] = [r.link for r in self.rods]
         return out
+
+
+@dataclass(frozen=True)
+class DrivenGroup:
+    """The original mechanism of a drive inside the chain: links (not the frame) that the
+    frame and the drive's one given coordinate fix — a coupler's absolute angle, or a
+    hydraulic cylinder's stroke (link ``drive`` sliding in its guide link). Its pairs give
+    2p = 3n − 1 equations and the drive the last one; the links are solved together
+    (:mod:`plans.kinematics.drives`). ``inner``: pairs among its links; ``outer``: with the
+    frame (``a`` is the group's link)."""
+
+    links: tuple[str, ...]
+    inner: tuple[Pair, ...]
+    outer: tuple[Pair, ...]
+    drive: str
+    klass: int = 1
+    base: None = None          # no base link: its relations are drawn as a class IV group's
+
+    @property
+    def pairs(self) -> tuple[Pair, ...]:
+        return self.inner + self.outer
+
+    @property
+    def order(self) -> int:
+        return len(self.outer)
+
+    @property
+    def form(self) -> str:
+        return "".join(p.kind for p in self.inner) + "-" + "".join(p.kind for p in self.outer)
+
+    @property
+    def name(self) -> str:
+        return f"I({FRAME}-{'-'.join(self.links)})"
+
+    def as_dict(self) -> dict:
+        return {"name": self.name, "links": list(self.links), "class": self.klass, "drive": self.drive,
+                "form": self.form, "pairs": [p.describe() for p in self.pairs]}
 
 
 def _first_complex(ix: _Index, known: set[str], remaining: set[str],

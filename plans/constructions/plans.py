@@ -67,7 +67,7 @@ from ..kinematics import Motion, special
 from ..kinematics.sliders import Sliding
 from ..kinematics.state import J
 from ..scene import FRAME, DriveKind
-from ..structure import ComplexGroup
+from ..structure import ComplexGroup, DrivenGroup
 
 __all__ = ["PlanPoint", "PlanVector", "ConstructionLine", "Plan", "Relation", "relations",
            "velocity_plan", "acceleration_plan", "uncertain_plan", "EXTENSION_MM", "UNCERTAIN_MM"]
@@ -158,11 +158,15 @@ def relations(motion: Motion) -> tuple[Relation, ...]:
     mech, structure = motion.mechanism, motion.structure
     out: list[Relation] = []
     d = mech.drive
+    constructed: set[tuple[str, str]] = set()
     if d.kind == DriveKind.ROTARY:
         out.append(Relation("rigid", d.link, d.tip, d.pivot, group="I"))
-    else:
+    elif d.kind == DriveKind.LINEAR:
         out.append(Relation("slide", d.link, d.guide.label, "", group="I", other=FRAME))
-    constructed: set[tuple[str, str]] = set()
+    else:   # a drive inside the chain: the original mechanism's relations, drawn as a class IV group's
+        g = structure.driven
+        out += _driven_relations(g)
+        constructed |= {(link, p.point) for p in g.pairs if p.kind == "R" for link in (p.a, p.b) if link in g.links}
     for g in structure.groups:
         name = g.name
         if g.klass > 2:            # class III and IV: the group's own relations
@@ -244,6 +248,21 @@ def _complex_relations(g: ComplexGroup) -> list[Relation]:
                 continue
             y = min(inner, key=lambda x: rank.get(x, 2))
             out += [Relation("rigid", link, x, y, group=g.name, lines=f"{g.name}:{x}") for x in inner if x != y]
+    return out
+
+
+def _driven_relations(g: DrivenGroup) -> list[Relation]:
+    """The original mechanism of a drive inside the chain: its pairs' relations as for a
+    class IV group (:func:`_complex_relations`), and for each sliding pair whose guide link
+    turns about an outer pin O, the guide's point at the pair relative to O (v_B2 ⊥ AB of a
+    cylinder swinging about A), from which the slider's image follows along the guide."""
+    out = _complex_relations(g)
+    outer = {p.a: p for p in g.outer if p.kind == "R"}
+    for pair in g.pairs:
+        if pair.kind == "P" and pair.prismatic.guide in outer:
+            pr, o = pair.prismatic, outer[pair.prismatic.guide]
+            out.append(Relation("rigid", pr.guide, pr.label, o.point, group=g.name,
+                                lines=f"{g.name}:{pr.label}{pr.guide}"))
     return out
 
 

@@ -148,8 +148,10 @@ def scheme(motion: Motion, i: int, mu_l: float, *, senses: bool = False) -> Sche
         if abs(reference) < 1e-9:
             reference = 0.0
         arcs = _drive_arcs(d, c, float(np.linalg.norm(tip - c)), crank, phi, reference)
+    if d.kind == DriveKind.COUPLER:    # the given ω, ε of the driving coupler, on it
+        arcs += _sense_arcs(motion, i, points, blocks, (d.link,))
     if senses:
-        arcs += _sense_arcs(motion, i, points, blocks)
+        arcs += _sense_arcs(motion, i, points, blocks, tuple(n for n in mech.moving if n != d.link))
     return Scheme(mu_l=mu_l, points=points, links=links, joints=joints, supports=supports,
                   blocks=tuple(blocks), guides=tuple(guides),
                   drive_pivot=d.pivot if d.kind == DriveKind.ROTARY else None, omega=d.speed, epsilon=d.rate,
@@ -249,17 +251,15 @@ def _drive_arcs(d, c: np.ndarray, length: float, crank: float, phi: float, refer
     return arcs
 
 
-def _sense_arcs(motion: Motion, i: int, points, blocks: list[Block]) -> list[Arc]:
-    """ω_j, ε_j arc arrows at the middle of every moving link but the driving one."""
+def _sense_arcs(motion: Motion, i: int, points, blocks: list[Block], links: tuple[str, ...]) -> list[Arc]:
+    """ω_j, ε_j arc arrows at the middle of each of ``links``."""
     mech = motion.mechanism
     if motion.order < 1:
         return []
     arcs = []
     kinds = ("omega", "epsilon") if motion.order >= 2 else ("omega",)
     scale = {k: max([1.0] + [abs(float(getattr(motion.links[n], k)[i])) for n in mech.moving]) for k in kinds}
-    for name in mech.moving:
-        if name == mech.drive.link:
-            continue
+    for name in links:
         state = motion.links[name]
         pts = mech.links[name].points
         xy = np.array([points[p] for p in pts])

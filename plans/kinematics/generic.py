@@ -64,6 +64,11 @@ class GroupEquations:
         if 2 * len(self.pairs) != 3 * len(self.links):
             raise ValueError("an Assur group has 3 equations per link: 2 per pair")
 
+    def at(self, i: int) -> "GroupEquations":
+        """The equations at position ``i`` of the walk's grid alone (the same for a group; a
+        driven group's hold the drive's value there)."""
+        return self
+
     # -- poses -------------------------------------------------------------------------
     def states(self, q: np.ndarray, known: States) -> dict[str, LinkState]:
         """All link states with the group's links put at poses ``q`` (N, 3k)."""

@@ -20,10 +20,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..scene import LINEAR_STEPS_PER_SIZE, STEP_DEG, DriveKind
-from ..structure import ComplexGroup
+from ..scene import LINEAR_STEPS_PER_SIZE, STEP_DEG
+from ..structure import ComplexGroup, DrivenGroup
 from .compiled import CompiledGroup
 from .tolerances import ASSEMBLY_RTOL
+from .drives import DrivenEquations
 from .generic import GroupEquations
 from .groups import candidates, conditioning
 from .state import LinkState, Motion
@@ -36,11 +37,12 @@ class LocalPoser:
 
     def __init__(self, motion: Motion, group: str, i: int):
         self.mech = mech = motion.mechanism
-        groups = list(motion.structure.groups)
+        driven = motion.structure.driven
+        groups = ([driven] if driven is not None else []) + list(motion.structure.groups)
         last = next(k for k, g in enumerate(groups) if g.name == group)
         self.groups = groups[:last + 1]
         self.target = self.groups[-1]
-        self.step = STEP_DEG if mech.drive.kind == DriveKind.ROTARY else mech.size / LINEAR_STEPS_PER_SIZE
+        self.step = STEP_DEG if mech.drive.kind.angular else mech.size / LINEAR_STEPS_PER_SIZE
         self.tol = ASSEMBLY_RTOL * mech.size
         x0 = float(motion.values[i])
         here = {name: s.take(np.array([i])) for name, s in motion.links.items()}
@@ -50,8 +52,9 @@ class LocalPoser:
         states = self._drive(x0)
         pose: dict[str, np.ndarray] = {}
         for g in self.groups:
-            if isinstance(g, ComplexGroup):
-                eq = self.eqs[g.name] = GroupEquations(mech, g.links, g.pairs)
+            if isinstance(g, (ComplexGroup, DrivenGroup)):
+                eq = self.eqs[g.name] = GroupEquations(mech, g.links, g.pairs) if isinstance(g, ComplexGroup) \
+                    else DrivenEquations(mech, g, np.array([x0]))
                 pose[g.name] = eq.pose(here)[0]
                 for name in g.links:
                     states[name] = LinkState(here[name].theta, here[name].origin)
@@ -73,6 +76,8 @@ class LocalPoser:
 
     def _condition(self, states) -> float:
         g = self.target
+        if isinstance(g, DrivenGroup):
+            return float(self.eqs[g.name].condition(states)[0])
         if isinstance(g, ComplexGroup):
             from .solve import group_condition
             return float(group_condition(self.mech, g, states)[0])
@@ -85,6 +90,14 @@ class LocalPoser:
         states = self._drive(x)
         pose = {}
         for g in self.groups:
+            if isinstance(g, DrivenGroup):     # the drive's value x enters its equations
+                eq = self.eqs[g.name] = DrivenEquations(mech, g, np.array([x]))
+                result = eq.newton(start[g.name][None, :], states)
+                if not result.converged:
+                    return None
+                pose[g.name] = result.q[0]
+                states.update(eq.states(result.q, {}))
+                continue
             if isinstance(g, ComplexGroup):
                 eq = self.eqs[g.name]
                 known = {n: s for n, s in states.items() if n not in eq.col}
@@ -137,7 +150,7 @@ def distance(motion: Motion, group: str, i: int) -> float | None:
     at a limit position and quadratically where branches cross; a step that lands past a
     limit position (or past c's sign change) is halved back towards the last good value."""
     mech = motion.mechanism
-    h = 0.05 if mech.drive.kind == DriveKind.ROTARY else 1e-4 * mech.size
+    h = 0.05 if mech.drive.kind.angular else 1e-4 * mech.size
     poser = LocalPoser(motion, group, i)
 
     def f(x: float) -> float | None:

@@ -19,9 +19,10 @@ from ..errors import AssemblyError, SingularPositionError
 from ..model import Mechanism
 from ..structure import Structure
 from ..scene import FRAME, LINEAR_STEPS_PER_SIZE, STEP_DEG, DriveKind   # the walk's steps, bounded by the scene
-from ..structure import ComplexGroup
+from ..structure import ComplexGroup, DrivenGroup
 from . import special
 from .compiled import CompiledGroup, walk as compiled_walk
+from .drives import DrivenEquations
 from .generic import GroupEquations
 from .groups import SINGULAR_REASON, accelerations, candidates, conditioning, velocities
 from .tolerances import ASSEMBLY_RTOL, JUMP_RATIO, SINGULAR_SIN, WARN_SIN
@@ -33,6 +34,9 @@ __all__ = ["analyse", "drive_states", "singular_reason", "group_condition", "SIN
 
 def singular_reason(g) -> str:
     """Why group ``g`` has no unique solution at a singular position."""
+    if isinstance(g, DrivenGroup):
+        return ("the original mechanism's equations (its pairs and the drive's) are singular: the drive "
+                "cannot move its links uniquely here (a dead position of the drive)")
     if not isinstance(g, ComplexGroup):
         return SINGULAR_REASON[g.form].format(m=g.m, n=g.n)
     if g.base is not None:
@@ -53,6 +57,14 @@ def analyse(mech: Mechanism, structure: Structure, values: np.ndarray | None = N
         _set_drive_rates(mech, states, values)
         sliding = {}
         complex_ = {}     # per class III/IV group: its equations and scaled Jacobian (poses only: shared)
+        if structure.driven is not None:
+            g = structure.driven
+            eq = DrivenEquations(mech, g, values)
+            a = eq.scaled_jacobian(states)
+            complex_[g.name] = eq, a
+            sines[g.name] = eq.condition(states, a)
+            _refuse_singular(mech, g, sines[g.name], values)
+            eq.velocities(states, a)
         for g in structure.groups:
             if isinstance(g, ComplexGroup):
                 eq = GroupEquations(mech, g.links, g.pairs)
@@ -65,6 +77,9 @@ def analyse(mech: Mechanism, structure: Structure, values: np.ndarray | None = N
             sliding[g.name], sines[g.name] = velocities(g, mech, states, pre.get(g.name))
             _refuse_singular(mech, g, sines[g.name], values)
         if order >= 2:
+            if structure.driven is not None:
+                eq, a = complex_[structure.driven.name]
+                eq.accelerations(states, a)
             for g in structure.groups:
                 if isinstance(g, ComplexGroup):
                     eq, a = complex_[g.name]
@@ -88,7 +103,7 @@ def _reach(mech: Mechanism, structure: Structure, values: np.ndarray, pre: dict 
         states, targets = _positions(mech, structure, values)
         return {name: s.take(targets) for name, s in states.items()}
     except AssemblyError:
-        if mech.drive.kind != DriveKind.ROTARY:
+        if not mech.drive.kind.angular:
             raise
     parts = []
     for value in values:
@@ -142,7 +157,7 @@ def _refuse_singular(mech: Mechanism, g, sin: np.ndarray, values: np.ndarray) ->
 
 
 def _fmt(mech: Mechanism, value: float) -> str:
-    return f"{value:g}°" if mech.drive.kind == DriveKind.ROTARY else f"{value:g} m"
+    return f"{value:g}°" if mech.drive.kind.angular else f"{value:g} m"
 
 
 def _grid(mech: Mechanism, values: np.ndarray, start: float | None = None
@@ -150,7 +165,7 @@ def _grid(mech: Mechanism, values: np.ndarray, start: float | None = None
     """The continuation grid: its values, its sweeps (index paths from the start), and the
     index of every requested value in it. A crank's walk starts at its sketch angle moved by
     whole turns towards the values' median, unless ``start`` (such an angle) is given."""
-    if mech.drive.kind == DriveKind.ROTARY:
+    if mech.drive.kind.angular:
         if start is None:
             start = _start(mech, values)
         step = STEP_DEG
@@ -169,7 +184,8 @@ def _grid(mech: Mechanism, values: np.ndarray, start: float | None = None
 
 
 def drive_states(mech: Mechanism, values: np.ndarray) -> dict[str, LinkState]:
-    """Poses of the frame and the driving link at drive ``values``."""
+    """Poses of the frame and the driving link at drive ``values`` (the frame alone for a drive
+    inside the chain: its link is solved with the original mechanism's)."""
     n = len(values)
     zero = np.zeros(n)
     states = {FRAME: LinkState(zero, np.zeros((n, 2)), zero, np.zeros((n, 2)), zero, np.zeros((n, 2))
@@ -181,7 +197,7 @@ def drive_states(mech: Mechanism, values: np.ndarray) -> dict[str, LinkState]:
         arm = local[d.tip] - local[d.pivot]
         theta = np.radians(values) - np.arctan2(arm[1], arm[0])
         states[d.link] = LinkState(theta, pivot - rotate(local[d.pivot], theta))
-    else:
+    elif d.kind == DriveKind.LINEAR:
         g = d.guide
         across = g.normal * float(np.dot(g.anchor[FRAME] - g.anchor[d.link], g.normal))
         states[d.link] = LinkState(zero.copy(), across + values[:, None] * g.direction)
@@ -191,12 +207,14 @@ def drive_states(mech: Mechanism, values: np.ndarray) -> dict[str, LinkState]:
 def _set_drive_rates(mech: Mechanism, states: dict[str, LinkState], values: np.ndarray) -> None:
     d = mech.drive
     n = len(values)
+    if d.link not in states:
+        return      # a drive inside the chain: its rates enter the original mechanism's equations
     s = states[d.link]
     if d.kind == DriveKind.ROTARY:
         pivot = np.broadcast_to(mech.links[FRAME].local[d.pivot], (n, 2))
         s = s.with_velocity(np.full(n, d.speed), pivot, None, own=True)       # the pivot is still
         s = s.with_acceleration(np.full(n, d.rate), pivot, None, own=True)
-    else:
+    elif d.kind == DriveKind.LINEAR:
         u = d.guide.direction
         s = s.with_velocity(np.zeros(n), s.origin, np.broadcast_to(d.speed * u, (n, 2)).copy())
         s = s.with_acceleration(np.zeros(n), s.origin, np.broadcast_to(d.rate * u, (n, 2)).copy())
@@ -207,7 +225,7 @@ def _start(mech: Mechanism, values: np.ndarray) -> float:
     """The walk's first value: a crank's sketch angle moved by whole turns towards the values'
     median, a slider's sketch position."""
     start = mech.drive.sketch_value
-    if mech.drive.kind == DriveKind.ROTARY:
+    if mech.drive.kind.angular:
         # round() is monotonic: when the extremes round alike, so does the median (no sort needed)
         low, high = np.round((np.array([values.min(), values.max()]) - start) / 360.0)
         turns = low if low == high else np.round((np.median(values) - start) / 360.0)
@@ -228,7 +246,7 @@ def _direct(mech: Mechanism, structure: Structure, values: np.ndarray, pre: dict
     refuse nothing, and its poses at the values are these, to the last bit. None (the full
     walk decides, and reports any failure) when a check fails or a group is of class III/IV."""
     if values.ndim != 1 or not values.size or not np.all(np.isfinite(values)) \
-            or any(isinstance(g, ComplexGroup) for g in structure.groups):
+            or structure.driven is not None or any(isinstance(g, ComplexGroup) for g in structure.groups):
         return None
     start = _start(mech, values)
     ends = np.array([values.min(), values.max()])
@@ -283,6 +301,10 @@ def _positions(mech: Mechanism, structure: Structure, values: np.ndarray, start:
         record[None] = grid, sweeps
     states = drive_states(mech, grid)
     tol = ASSEMBLY_RTOL * mech.size
+    if structure.driven is not None:   # the original mechanism, step by step with the drive's values
+        eq = DrivenEquations(mech, structure.driven, grid)
+        states.update(_walk(mech, structure.driven, eq, states, grid, sweeps, values))
+        _check_crossing(mech, structure.driven, eq.condition(states), grid, sweeps, values)
     for g in structure.groups:
         if isinstance(g, ComplexGroup):
             eq = GroupEquations(mech, g.links, g.pairs)
@@ -358,7 +380,7 @@ def _fast_walk(mech: Mechanism, eq: GroupEquations, states: dict[str, LinkState]
         return None, group
     q = np.empty((len(grid), group.n))
     q[start[0]] = q0[0]
-    step = STEP_DEG if mech.drive.kind == DriveKind.ROTARY else mech.size / LINEAR_STEPS_PER_SIZE
+    step = STEP_DEG if mech.drive.kind.angular else mech.size / LINEAR_STEPS_PER_SIZE
     for sweep in sweeps:
         part = compiled_walk(group, sweep, grid[sweep], q[sweep[0]], step, JUMP_RATIO)
         if part is None:
@@ -398,7 +420,7 @@ def _walk(mech: Mechanism, g: ComplexGroup, eq: GroupEquations, states: dict[str
                 guesses.insert(0, 2.0 * q[prev] - q[prev2])
             result = None
             for guess in guesses:
-                result = eq.newton(guess[None, :], known(i))
+                result = eq.at(i).newton(guess[None, :], known(i))
                 if result.converged:
                     break
             if not result.converged:
@@ -407,13 +429,27 @@ def _walk(mech: Mechanism, g: ComplexGroup, eq: GroupEquations, states: dict[str
             q[i] = result.q[0]
             if prev is not None:
                 moved = np.max(np.abs(q[i, cols] - q[prev, cols]))
-                before = np.max(np.abs(q[prev, cols] - q[prev2, cols])) if prev2 is not None else 0.0
+                # the step before, or for the first step its linear prediction
+                before = np.max(np.abs(q[prev, cols] - q[prev2, cols])) if prev2 is not None else \
+                    _predicted_move(eq.at(i), q[prev], known(i), cols)
                 if moved > 0.01 * mech.size and moved > JUMP_RATIO * before:
                     raise fail(i, "the assembly branch would jump between neighbouring steps (a limit "
                                   "position or a singular position lies there)")
             done[i] = True
             prev2, prev = prev, i
     return {name: LinkState(q[:, c + 2], q[:, c:c + 2]) for name, c in eq.col.items()}
+
+
+def _predicted_move(eq: GroupEquations, q: np.ndarray, known: dict[str, LinkState], cols: list[int]) -> float:
+    """How far (largest coordinate, m) a step from pose ``q`` to the position of ``known``
+    moves the group's origins by the linear prediction (one Newton step): the yardstick of a
+    walk's first step, which has no step before it."""
+    st = eq.states(q[None, :], known)
+    try:
+        dx = np.linalg.solve(eq.scaled_jacobian(st), -eq._scale_rows(eq.residual(st))[..., None])[0, :, 0]
+    except np.linalg.LinAlgError:
+        return 0.0
+    return float(np.max(np.abs(dx[cols])))
 
 
 def _group_label(g) -> str:

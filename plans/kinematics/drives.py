@@ -1,0 +1,131 @@
+"""A drive inside the chain: the original mechanism's links solved together with the drive.
+
+A coupler's absolute angle, or a hydraulic cylinder's stroke, fixes no link by itself: the
+links of the original mechanism (:class:`~plans.structure.DrivenGroup`, 3n unknowns) have
+2p = 3n − 1 pair equations (those of :class:`~plans.kinematics.generic.GroupEquations`) and
+the drive gives the last one, rheonomic (it holds the drive's value at the position):
+
+* coupler c, its line turned θ_c from the sketch:  θ_c − (φ − φ₀) = 0   (rad; φ₀ the sketch's angle)
+* cylinder, rod s sliding in guide link g:          (X_s − Y_g)·u_g − σ₀ − s = 0   (m)
+
+(X_s, Y_g: the pair's anchor points on each link, u_g the guide's direction turned with g,
+σ₀ their offset along it in the sketch.) Its time derivatives give the drive's row of the
+rate solves: θ̇_c = ω, θ̈_c = ε for a coupler; for a cylinder the relative sliding velocity
+σ̇ = v and acceleration σ̈ = a along the guide, with the terms the guide's turning adds
+(the same as a prismatic pair's normal row, with u_g for n_g):
+
+    σ̇ = (V_s − V_g)·u_g + ω_g (X_s − Y_g)·(k × u_g)
+    σ̈ = (A_s − A_g)·u_g + 2ω_g (V_s − V_g)·(k × u_g) + (X_s − Y_g)·(ε_g k × u_g − ω_g² u_g)
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..model import Mechanism
+from ..scene import DriveKind
+from ..structure import DrivenGroup
+from .generic import GroupEquations, States, _dot
+from .state import J, LinkState
+
+__all__ = ["DrivenEquations"]
+
+
+class DrivenEquations(GroupEquations):
+    """The driven group's pair equations and the drive's, at drive ``values`` (degrees for a
+    coupler, metres for a cylinder; one per position)."""
+
+    def __init__(self, mech: Mechanism, group: DrivenGroup, values: np.ndarray):
+        self.mech = mech
+        self.links = tuple(group.links)
+        self.pairs = tuple(group.pairs)
+        self.col = {name: 3 * i for i, name in enumerate(self.links)}
+        self.size = mech.size
+        if 2 * len(self.pairs) + 1 != 3 * len(self.links):
+            raise ValueError("a driven group has 3 equations per link: 2 per pair and the drive's")
+        self.drive = d = mech.drive
+        self.angular = d.kind == DriveKind.COUPLER
+        values = np.asarray(values, dtype=float)
+        if self.angular:
+            self.target = np.radians(values) - math.radians(d.sketch_value)
+        else:
+            p = d.guide
+            u, xs, yg = p.direction, mech.links[p.slider].local, mech.links[p.guide].local
+            # the anchors' offset along the guide in the sketch, where every pose is the identity
+            self.target = values + float(np.dot(p.anchor[p.slider] - p.anchor[p.guide], u))
+
+    def at(self, i: int) -> "DrivenEquations":
+        """The same equations at position ``i`` alone (its drive value)."""
+        out = object.__new__(DrivenEquations)
+        out.__dict__.update(self.__dict__)
+        out.target = self.target[i:i + 1]
+        return out
+
+    # -- the drive's row -------------------------------------------------------------------
+    def _slide(self, states: States):
+        p = self.drive.guide
+        s, g = states[p.slider], states[p.guide]
+        xs, yg = s.point(p.anchor[p.slider]), g.point(p.anchor[p.guide])
+        return s, g, xs, yg, g.direction(p.direction)
+
+    def residual(self, states: States) -> np.ndarray:
+        if self.angular:
+            row = states[self.drive.link].theta - self.target
+        else:
+            _, _, xs, yg, u = self._slide(states)
+            row = _dot(xs - yg, u) - self.target
+        return np.column_stack([super().residual(states), row])
+
+    def jacobian(self, states: States) -> np.ndarray:
+        a = super().jacobian(states)
+        row = np.zeros((a.shape[0], 1, a.shape[2]))
+        if self.angular:
+            row[:, 0, self.col[self.drive.link] + 2] = 1.0
+        else:
+            p = self.drive.guide
+            s, g, xs, yg, u = self._slide(states)
+            if p.slider in self.col:
+                c = self.col[p.slider]
+                row[:, 0, c:c + 2] += u
+                row[:, 0, c + 2] += _dot(J(xs - s.origin), u)
+            if p.guide in self.col:
+                c = self.col[p.guide]
+                row[:, 0, c:c + 2] -= u
+                row[:, 0, c + 2] += -_dot(J(yg - g.origin), u) + _dot(xs - yg, J(u))
+        return np.concatenate([a, row], axis=1)
+
+    def velocity_terms(self, states: States) -> np.ndarray:
+        d = self.drive
+        if self.angular:
+            row = states[d.link].omega - d.speed
+        else:
+            s, g, xs, yg, u = self._slide(states)
+            row = _dot(s.velocity(xs) - g.velocity(yg), u) + g.omega * _dot(xs - yg, J(u)) - d.speed
+        return np.column_stack([super().velocity_terms(states), row])
+
+    def acceleration_terms(self, states: States) -> np.ndarray:
+        d = self.drive
+        if self.angular:
+            row = states[d.link].epsilon - d.rate
+        else:
+            s, g, xs, yg, u = self._slide(states)
+            dv = s.velocity(xs) - g.velocity(yg)
+            da = s.acceleration(xs) - g.acceleration(yg)
+            w, e = g.omega, g.epsilon
+            row = _dot(da, u) + 2.0 * w * _dot(dv, J(u)) \
+                + _dot(xs - yg, e[:, None] * J(u) - (w * w)[:, None] * u) - d.rate
+        return np.column_stack([super().acceleration_terms(states), row])
+
+    def _scale_rows(self, m: np.ndarray) -> np.ndarray:
+        """As for a group, and a coupler's angle row ×size too (every entry dimensionless)."""
+        m = super()._scale_rows(m)
+        if self.angular:
+            m[:, -1] *= self.size
+        return m
+
+
+def sketch_states(mech: Mechanism, group: DrivenGroup, n: int) -> dict[str, LinkState]:
+    """The driven group's links at their sketch poses (θ = 0, origin 0) at ``n`` positions."""
+    return {name: LinkState(np.zeros(n), np.zeros((n, 2))) for name in group.links}
