@@ -37,7 +37,7 @@ reversed). No vector ends at the image of a fixed point.
   rod's own line; the pins of rods i and j from k (⊥ k–pin) and their rods' own lines; each
   pin's two lines form the group ``III(…):B``. The other routes (the other special points)
   are not drawn: the whole group is solved a second way, numerically, as a cross-check
-  (:func:`plans.pipeline.triads`).
+  (:attr:`plans.kinematics.Motion.triad_disagreement`).
 - **Class IV** groups: each link with an outer pair O gives its other pins relative to O, and
   each link without one gives its pin on the far side relative to the pin nearer the frame;
   every relation gets its construction line (group ``IV(…):X`` per image x) and, on the

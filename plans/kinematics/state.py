@@ -181,6 +181,11 @@ class Motion:
     ``values`` are the drive's values as requested (degrees or metres); ``order`` is 0
     (positions), 1 (+ velocities) or 2 (+ accelerations); ``sines`` holds, per group, the
     normalised determinant of its velocity equations (1 = well conditioned, 0 = singular).
+
+    Motion carries everything the kinematics knows, so that constructions and drawing compute
+    none of it: the values derived from the links' states (``sliding``, ``angles``,
+    ``centres``, the class III groups' ``special_points``, their second solution ``triads``
+    and its cross-check ``triad_disagreement``) are computed once, when first read.
     """
 
     mechanism: "object"
