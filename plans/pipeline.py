@@ -30,9 +30,9 @@ from .drawing import Heading, Style, draw_centres, draw_plan, draw_scheme
 from .drawing.koshel import draw_koshel
 from .errors import ConstructionError, OutputError, PlansError
 from .export import DEFAULT_DPI, convert, parse_formats, require_cairo
-from .kinematics import WARN_SIN, Motion, analyse, singular, special
-from .kinematics.centres import Centres, centres
-from .kinematics.sliders import link_angles
+from .kinematics import WARN_SIN, Motion, analyse
+from .kinematics.centres import Centres
+from .kinematics.tolerances import CROSS_CHECK_RTOL
 from .output import check_folder, write_files
 from .model import build_mechanism
 from .scene import Scene, read_scene
@@ -147,20 +147,19 @@ def _position_label(motion: Motion, i: int) -> str:
         f"s = {v:g} m, v = {d.speed:g} m/s, a = {d.rate:g} m/s²"
 
 
-def report(scene: Scene, motion: Motion, scales: Scales, solutions: dict | None = None,
-           ic: Centres | None = None) -> dict:
+def report(scene: Scene, motion: Motion, scales: Scales) -> dict:
     """The JSON report: structure and, per position, points, links, scales, conditioning,
-    instantaneous centres and the special points of class III groups (SI)."""
+    instantaneous centres and the special points of class III groups (SI), all read off
+    ``motion`` (the special points as its second, special-point solution gives them)."""
     mech = motion.mechanism
     key = "angle" if mech.drive.kind.angular else "displacement"
     positions = []
-    ic = centres(motion) if ic is None and motion.order >= 1 else ic
-    solutions = special.triads(motion) if solutions is None else solutions
-    special_pts = {g.name: triad.points for g, triad in solutions.items()}
+    ic: Centres | None = motion.centres if motion.order >= 1 else None
+    special_pts = {name: triad.points for name, triad in motion.triads.items()}
     r = {p: motion.position(p) for p in mech.sketch}
     v = {p: motion.velocity(p) for p in mech.sketch} if motion.order >= 1 else {}
     a = {p: motion.acceleration(p) for p in mech.sketch} if motion.order >= 2 else {}
-    angles = link_angles(motion)
+    angles = motion.angles
     slides = motion.sliding
     for i, value in enumerate(motion.values):
         points = {}
@@ -251,11 +250,9 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
         scales = _scales(scene, motion, rest)
     except PlansError as exc:
         raise exc.in_file(where) if where and hasattr(exc, "in_file") else exc
-    solutions = special.triads(motion)
-    for g, triad in solutions.items():
-        worst = special.disagreement(motion, triad)
-        if worst > special.CROSS_CHECK_RTOL:
-            raise PlansError(f"{path}: group {g.name}: the special-point solution and the Jacobian solution differ "
+    for name, worst in motion.triad_disagreement.items():
+        if worst > CROSS_CHECK_RTOL:
+            raise PlansError(f"{path}: group {name}: the special-point solution and the Jacobian solution differ "
                              f"by {worst:.2e} (relative) — please report this scene")
     files: dict[str, str] = {}
     warnings = []
@@ -263,7 +260,6 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
     if resting:
         warnings.append(f"{stem}: {_rest_note(motion, resting[-1])}; the {' and '.join(resting)} "
                         f"plan{'s are sheets' if len(resting) > 1 else ' is a sheet'} saying so")
-    ic = centres(motion) if motion.order >= 1 else None
     formula = motion.structure.formula
     unit = "°" if motion.mechanism.drive.kind.angular else " m"
     for i in range(len(motion)):
@@ -271,7 +267,7 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
         label = _position_label(motion, i)
         for g, s in motion.sines.items():
             if abs(s[i]) < WARN_SIN:
-                away = singular.distance(motion, g, i)
+                away = motion.singular_distance(g, i)
                 where = "" if away is None else f", about {away:.3g}{unit} from it"
                 warnings.append(f"{stem}: group {g} is near a singular position at {motion.values[i]:g}{unit} "
                                 f"(condition {s[i]:.2e}{where}); values are exact but sensitive")
@@ -280,12 +276,12 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
             files[f"{stem}-scheme{sfx}.svg"] = draw_scheme(sch, Heading(scene.title, "Kinematic scheme", label),
                                                            formula=formula, ident=f"scheme{sfx or ''}", style=style)
         if "centres" in scene.draw:
-            sheet = centres_sheet(motion, ic, i)
+            sheet = centres_sheet(motion, i)
             files[f"{stem}-centres{sfx}.svg"] = draw_centres(
                 sheet, Heading(scene.title, "Instantaneous centres of velocity", label), formula=formula,
                 ident=f"centres{sfx or ''}", style=style)
         if "velocity" in scene.draw:
-            for g in solutions:
+            for g in (found.group for found in motion.special_points.values()):
                 koshel = _koshel(motion, i, g, rest[0], title=scene.title, label=label, ident=f"koshel{sfx or ''}",
                                  style=style)
                 if koshel is None:
@@ -310,7 +306,7 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
             sym = "μ_V" if kind == "velocity" else "μ_a"
             files[f"{stem}-{kind}{sfx}.svg"] = draw_plan(plan, heading, ident=f"{kind}{sfx or ''}", style=style,
                                                          notes=tuple(n for n in scales.notes if n.startswith(sym)))
-    data = _no_negative_zero(report(scene, motion, scales, solutions, ic))
+    data = _no_negative_zero(report(scene, motion, scales))
     files[f"{stem}.json"] = json.dumps(data, indent=1, ensure_ascii=False) + "\n"
     return Rendered(stem, files, motion, scales, tuple(warnings))
 

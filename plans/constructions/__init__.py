@@ -1,7 +1,9 @@
 """Constructions: the plans and the scheme as pure geometry, in millimetres of paper (y up).
 
-Nothing here solves kinematics (it reads a solved :class:`~plans.kinematics.Motion`) and
-nothing here draws (the drawing package turns these objects into SVG).
+Nothing here computes kinematics: it reads a solved :class:`~plans.kinematics.Motion` — the
+points' positions, velocities and accelerations (``motion.velocity_at`` for any point of a
+link), the sliding, the centres, the class III groups' special points — and nothing here draws
+(the drawing package turns these objects into SVG). ``tests/test_motion_flow.py`` holds both.
 """
 
 from .scales import SERIES, Scales, choose_scales, standard_scale

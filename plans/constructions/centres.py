@@ -18,8 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..kinematics import Motion, special
-from ..kinematics.centres import Centres
+from ..kinematics import Motion
 from ..scene import FRAME
 from .scales import fitting_scale
 from .scheme import Scheme, scheme
@@ -84,9 +83,10 @@ def _segment(points: list[np.ndarray]) -> tuple[tuple[float, float], tuple[float
     return _xy(pts[0] + (t.min() - OVERRUN_MM) * u), _xy(pts[0] + (t.max() + OVERRUN_MM) * u)
 
 
-def centres_sheet(motion: Motion, ic: Centres, i: int) -> CentresSheet:
-    """The centres sheet at position ``i``; ``ic`` from :func:`plans.kinematics.centres.centres`."""
+def centres_sheet(motion: Motion, i: int) -> CentresSheet:
+    """The centres sheet at position ``i``: the motion's centres (:attr:`~plans.kinematics.Motion.centres`)."""
     mech = motion.mechanism
+    ic = motion.centres
     world = {p: motion.position(p)[i] for p in mech.sketch}
     pts = np.array(list(world.values()))
     lo, hi = pts.min(axis=0), pts.max(axis=0)
@@ -155,16 +155,14 @@ def _neighbour_centre(mech, link: str, point: str, near: dict[str, np.ndarray]) 
 
 
 def _special_points(motion: Motion, i: int) -> dict[str, tuple[np.ndarray, np.ndarray]]:
-    """The special points of every class III group at position i: label → (S, v_S)."""
+    """The special points of every class III group at position i, as the motion gives them:
+    label ``S1:<base link>`` → (S m, v_S m/s as a point of the base link)."""
     out = {}
-    states = {name: s.take(np.array([i])) for name, s in motion.links.items()}
-    for g in special.triad_groups(motion.structure):
-        for p in special.special_points(g, motion.mechanism, states):
-            if abs(float(p.sin[0])) < 1e-9:
+    for found in motion.special_points.values():
+        for p in found.points:
+            if abs(float(p.sin[i])) < 1e-9:
                 continue
-            s = p.position[0]
-            v = states[g.base].velocity(s[None, :])[0]
-            out[f"{p.name}:{g.base}"] = (s, v)
+            out[f"{p.name}:{found.group.base}"] = (p.position[i], p.v[i])
     return out
 
 

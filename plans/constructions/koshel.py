@@ -22,7 +22,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..errors import ConstructionError
-from ..kinematics import Motion, special
+from ..kinematics import Motion
 from ..kinematics.state import J
 from ..scene import FRAME, DriveKind
 from ..structure import ComplexGroup
@@ -177,14 +177,13 @@ def koshel_sheet(motion: Motion, i: int, g: ComplexGroup, plan: Plan, segment: f
     x_name, y_name = driven.inner.point, driven.outer.point
     speed = max(float(np.linalg.norm(motion.velocity(p, base)[i])) for p in pins)
     # the lines of known direction: base pins of rods on the frame (variant 1) …
-    states = {name: s.take(np.array([i])) for name, s in motion.links.items()}
     known = []                                   # (name, point m, unit direction ⊥ v, words)
-    for rod, ax in zip(g.rods, special.axes(g, mech, states)):
+    for rod, ax in zip(g.rods, motion.special_points[g.name].axes):
         if rod.outer.b == FRAME and rod.form in ("RR", "PR"):
             x = rod.inner.point
             why = f"v_{{{x}}} ⊥ {rod.outer.point}{x}" if rod.form == "RR" else \
                 f"v_{{{x}}} ∥ the guide of {rod.link}"
-            known.append((x, world[x], ax.direction[0], why))
+            known.append((x, world[x], ax.direction[i], why))
     # … and the special points of the group that move (variant 2)
     specials, moving, resting = [], [], []
     for label, (s, v) in _special_points(motion, i).items():

@@ -37,7 +37,7 @@ reversed). No vector ends at the image of a fixed point.
   rod's own line; the pins of rods i and j from k (⊥ k–pin) and their rods' own lines; each
   pin's two lines form the group ``III(…):B``. The other routes (the other special points)
   are not drawn: the whole group is solved a second way, numerically, as a cross-check
-  (:func:`plans.pipeline.triads`).
+  (:attr:`plans.kinematics.Motion.triad_disagreement`).
 - **Class IV** groups: each link with an outer pair O gives its other pins relative to O, and
   each link without one gives its pin on the far side relative to the pin nearer the frame;
   every relation gets its construction line (group ``IV(…):X`` per image x) and, on the
@@ -347,11 +347,9 @@ class _Builder:
         return point if point in self.extra else _label(self.motion, point, link)
 
     def quantity(self, point: str, link: str) -> np.ndarray:
-        """v or a (SI) of the point of ``link`` now at ``point``."""
-        state = self.motion.links[link].take(np.array([self.i]))
-        x = self.world(point)[None, :]
-        vec = state.velocity(x) if self.kind == "velocity" else state.acceleration(x)
-        return vec[0]
+        """v (m/s) or a (m/s²) of the point of ``link`` now at ``point``, as the motion gives it."""
+        at = self.motion.velocity_at if self.kind == "velocity" else self.motion.acceleration_at
+        return at(link, self.world(point), self.i)
 
     def slide(self, slider: str, guide: str) -> Sliding:
         """The kinematics' sliding of ``slider`` along ``guide`` (the first such pair, as
@@ -557,31 +555,31 @@ def _special(b: _Builder, g: ComplexGroup, sym: str) -> None:
     pins of rods i and j from k (⊥ k–pin), each with its rod's own line (its axis passes
     through S, so s gives it no second direction). The route is the one whose line pairs are
     the farthest from parallel (:func:`_route`); the base triangle is closed by
-    :func:`_close_figures`."""
+    :func:`_close_figures`. The axes, special points and known acceleration terms are the
+    motion's (:attr:`~plans.kinematics.Motion.special_points`)."""
     motion, i = b.motion, b.i
     mech = motion.mechanism
-    states = {name: s.take(np.array([i])) for name, s in motion.links.items()}
-    ax = special.axes(g, mech, states)
-    pts = special.special_points(g, mech, states)
-    p = pts[_route(ax, pts)]
+    found = motion.special_points[g.name]
+    ax = found.axes
+    route = _route(ax, found.points, i)
+    p = found.points[route]
     # S1, S2, S3 — primed if the scene has points of those names
     s_name = p.name + PRIME * next(k for k in count() if p.name + PRIME * k not in mech.sketch)
-    b.extra[s_name] = p.position[0]
+    b.extra[s_name] = p.position[i]
     s_img = b.image(s_name, g.base)
     for r in p.rods:
         rod = ax[r].rod
         pin = rod.inner.point if rod.form == "PR" else rod.outer.point
         k_lab = b.label(pin, ax[r].known)
         k_img = b.image(pin, ax[r].known)
-        e = ax[r].normal[0]
+        e = ax[r].normal[i]
         q = f"{sym}:{s_name}/{k_lab}"
         total = b.quantity(s_name, g.base) - b.quantity(pin, ax[r].known)
         if sym == "v":
             b.vector(q, k_img, s_img, float(np.linalg.norm(total)), "relative")
             b.line(k_img, e, [s_img], q, f"{g.name}:{s_name}")
             continue
-        known = special.known_acceleration(ax[r], g, mech, states, states, p.position)[0]
-        c = known - b.quantity(pin, ax[r].known)      # normal (and Coriolis) components, known
+        c = found.known[(route, r)][i] - b.quantity(pin, ax[r].known)      # normal (and Coriolis) components, known
         n_xy = b.put(("n", s_name, k_lab), f"n_{s_name}{k_lab}", np.add(k_img, c / b.mu))
         b.vector(f"{q}:n", k_img, n_xy, float(np.linalg.norm(c)), "normal")
         b.vector(f"{q}:t", n_xy, s_img, float(np.linalg.norm(total - c)), "tangential")
@@ -602,21 +600,22 @@ def _base_point(ax: special.Axis) -> str:
     return rod.inner.point if rod.inner.kind == "R" else rod.outer.point
 
 
-def _route(ax: tuple[special.Axis, ...], pts: tuple[special.SpecialPoint, ...]) -> int:
-    """Index of the special point to draw from: each route meets four pairs of lines (s; the
-    third pin from s; the two other pins from it), the route whose worst pair is the farthest
-    from parallel (largest smallest |sin|) is drawn."""
+def _route(ax: tuple[special.Axis, ...], pts: tuple[special.SpecialPoint, ...], i: int) -> int:
+    """Index of the special point to draw from at position i: each route meets four pairs of
+    lines (s; the third pin from s; the two other pins from it), the route whose worst pair is
+    the farthest from parallel (largest smallest |sin|) is drawn."""
     def sin(u: np.ndarray, d: np.ndarray) -> float:   # |sin| between a segment u and a unit direction d
         n = float(np.linalg.norm(u))
         return abs(float(u[0] * d[1] - u[1] * d[0])) / n if n > 0.0 else 0.0
 
+    n = i
     scores = []
     for p in pts:
         i, j = p.rods
         k = next(r for r in range(3) if r not in p.rods)
-        s, pk = p.position[0], ax[k].pin[0]
-        scores.append(min(abs(float(p.sin[0])), sin(pk - s, ax[k].direction[0]),
-                          sin(ax[i].pin[0] - pk, ax[i].direction[0]), sin(ax[j].pin[0] - pk, ax[j].direction[0])))
+        s, pk = p.position[n], ax[k].pin[n]
+        scores.append(min(abs(float(p.sin[n])), sin(pk - s, ax[k].direction[n]),
+                          sin(ax[i].pin[n] - pk, ax[i].direction[n]), sin(ax[j].pin[n] - pk, ax[j].direction[n])))
     return int(np.argmax(scores))
 
 
@@ -657,9 +656,9 @@ def uncertain_plan(motion: Motion, i: int, g: ComplexGroup) -> Plan | None:
         raise ConstructionError(f"base link {g.base} of group {g.name} translates at this position (ω{g.base} = "
                                 f"{omega:.1e} rad/s): its instantaneous centre is at infinity, so Koshel's "
                                 "construction from it does not apply")
+    centre = motion.centre_from(g.base, x_name, i)     # P of the base link (ω ≠ 0 here)
     b = _Builder(motion, i, float(np.linalg.norm(v_x)) / UNCERTAIN_MM, "velocity")
     pole = b.put(("pole",), "p", (0.0, 0.0))
-    centre = motion.position(x_name)[i] + J(v_x) / omega     # P of the base link
     x_img = b.image(x_name, g.base)
     b.line(pole, J(motion.position(x_name)[i] - centre), [x_img], f"v:{x_name}", f"{g.name}:P")
     b.vector(f"v:{x_name}", pole, x_img, float(np.linalg.norm(v_x)), "absolute")

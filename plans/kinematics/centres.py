@@ -24,7 +24,7 @@ from ..scene import FRAME
 from .tolerances import INFINITY_RTOL
 from .state import J, Motion
 
-__all__ = ["Centre", "Centres", "centres", "INFINITY_RTOL"]
+__all__ = ["Centre", "Centres", "centres", "centre_from", "INFINITY_RTOL"]
 
 
 
@@ -82,3 +82,13 @@ def centres(motion: Motion) -> Centres:
     absolute = {name: _centre(motion, name, FRAME) for name in moving}
     relative = {(a, b): _centre(motion, a, b) for a, b in combinations(moving, 2)}
     return Centres(absolute, relative)
+
+
+def centre_from(motion: Motion, link: str, point: str, i: int) -> np.ndarray | None:
+    """The absolute centre of ``link`` at position ``i`` (m) from the velocity of its point
+    ``point``: P = X + k × v_X / ω (the point of :func:`centres` up to rounding, as a
+    draughtsman finds it from one velocity); None when ω = 0 (the link translates)."""
+    omega = float(motion.links[link].omega[i])
+    if omega == 0.0:
+        return None
+    return motion.position(point)[i] + J(motion.velocity(point, link)[i]) / omega

@@ -30,7 +30,7 @@ the known images are parallel).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Mapping
 
 import numpy as np
@@ -40,8 +40,9 @@ from ..structure import ComplexGroup, Rod
 from .state import J, LinkState, cross
 from .tolerances import CROSS_CHECK_RTOL
 
-__all__ = ["Axis", "SpecialPoint", "TriadSolution", "axes", "special_points", "solve_triad", "condition",
-           "supports", "triad_groups", "triads", "disagreement", "CROSS_CHECK_RTOL", "pick", "known_acceleration"]
+__all__ = ["Axis", "SpecialPoint", "TriadSolution", "GroupPoints", "axes", "special_points", "solve_triad", "condition",
+           "supports", "triad_groups", "triads", "disagreement", "disagreements", "group_points", "CROSS_CHECK_RTOL",
+           "pick", "known_acceleration"]
 
 
 
@@ -87,6 +88,20 @@ class TriadSolution:
     points: tuple[SpecialPoint, ...]
 
 
+@dataclass(frozen=True)
+class GroupPoints:
+    """A class III group's rod axes and special points at every position, read off the solved
+    motion (its Jacobian solution, not :func:`solve_triad`'s): each point's ``v`` (m/s) and
+    ``a`` (m/s²) are those of S as a point of the base link (None below the motion's order);
+    ``known[(k, r)]`` (N, 2) m/s² is a_K(k_r) + c_r, the known part of special point k's
+    acceleration along its rod r (:func:`known_acceleration`; only at order 2)."""
+
+    group: ComplexGroup
+    axes: tuple[Axis, ...]
+    points: tuple[SpecialPoint, ...]
+    known: Mapping[tuple[int, int], np.ndarray]
+
+
 def supports(g: ComplexGroup) -> bool:
     """True for class III groups whose rods all have a defined axis (no P–P rod)."""
     return g.base is not None and all(r.form != "PP" for r in g.rods)
@@ -106,6 +121,34 @@ def triads(motion) -> dict[ComplexGroup, TriadSolution]:
         out[g] = solve_triad(g, motion.mechanism, motion.links, order=motion.order) if motion.order >= 1 \
             else TriadSolution({}, special_points(g, motion.mechanism, motion.links))
     return out
+
+
+def group_points(motion) -> dict[str, GroupPoints]:
+    """Every class III group's axes and special points (group name → :class:`GroupPoints`),
+    with the velocities and accelerations of the motion at them (see :class:`GroupPoints`)."""
+    mech, links, out = motion.mechanism, motion.links, {}
+    for g in triad_groups(motion.structure):
+        ax = axes(g, mech, links)
+        base = links[g.base]
+        points, known = [], {}
+        with np.errstate(over="ignore", invalid="ignore"):    # S far away where two axes are near parallel
+            for k, p in enumerate(_special_points(ax)):
+                v = base.velocity(p.position) if motion.order >= 1 else None
+                a = base.acceleration(p.position) if motion.order >= 2 else None
+                points.append(replace(p, v=v, a=a))
+                if motion.order >= 2:
+                    for r in p.rods:
+                        known[(k, r)] = known_acceleration(ax[r], g, mech, links, links, p.position)
+        out[g.name] = GroupPoints(g, ax, tuple(points), known)
+    return out
+
+
+def disagreements(motion) -> dict[str, float]:
+    """Per class III group (name → value), the :func:`disagreement` of its special-point
+    solution (:func:`triads`) with the motion's; empty below order 1."""
+    if motion.order < 1:
+        return {}
+    return {name: disagreement(motion, t) for name, t in motion.triads.items()}
 
 
 def disagreement(motion, triad: TriadSolution) -> float:
@@ -167,7 +210,11 @@ def condition(g: ComplexGroup, mech: Mechanism, states: States) -> np.ndarray:
 def special_points(g: ComplexGroup, mech: Mechanism, states: States) -> tuple[SpecialPoint, ...]:
     """S1 = axes 1∩2, S2 = axes 1∩3, S3 = axes 2∩3 (positions only; parallel axes give a
     point far away and sin = 0 — such a point is never used)."""
-    ax = axes(g, mech, states)
+    return _special_points(axes(g, mech, states))
+
+
+def _special_points(ax: tuple[Axis, ...]) -> tuple[SpecialPoint, ...]:
+    """The special points where the axes ``ax`` meet (see :func:`special_points`)."""
     out = []
     for k, (i, j) in enumerate(((0, 1), (0, 2), (1, 2))):
         x, s = _meet(ax[i].point, ax[i].direction, ax[j].point, ax[j].direction)
