@@ -25,10 +25,12 @@ equation (a "driving constraint"), so Φ(q, t) = 0 is square, 3n equations in 3n
 
       θ_d + atan2(T − O)_local − φ(t) = 0
 
-* linear drive, link d on a frame guide of direction u (displacement s(t) along the guide
-  from the sketch position, where every pose is the identity)::
+* linear drive, link d sliding on a guide of direction u fixed in link g — the frame, or a
+  moving link for a hydraulic cylinder (displacement s(t) along the guide from the sketch
+  position, where every pose is the identity; the coupler drive is the rotary one's equation
+  for a link not pivoted on the frame)::
 
-      (o_d + R(θ_d)·A_d − A_d) · u − s(t) = 0
+      (o_d + R(θ_d)·A_d − o_g − R(θ_g)·A_g) · R(θ_g)·u − (A_d − A_g)·u − s(t) = 0
 
 Positions are found by Newton's method, continued from the sketch (the identity pose) in small
 steps with a second-order predictor; the sign of det Φ_q is watched so that the walk stays on
@@ -123,7 +125,7 @@ class Reference:
         if neq != self.n:
             raise ValueError(f"{neq} constraint equations for {self.n} unknowns: not a one-drive mechanism")
         d = mech.drive
-        self.rotary = d.kind == "rotary"
+        self.rotary = d.kind in ("rotary", "coupler")
         if self.rotary:
             local = mech.links[d.link].local
             arm = local[d.tip] - local[d.pivot]
@@ -131,8 +133,9 @@ class Reference:
             #: drive value (degrees) at the identity pose of every link (the sketch)
             self.start = math.degrees(self.arm_angle)
         else:
+            self.guide = d.guide
             self.u = np.asarray(d.guide.direction, float)
-            self.anchor = np.asarray(d.guide.anchor[d.link], float)
+            self.offset = float((d.guide.anchor[d.link] - d.guide.anchor[d.guide.guide]) @ self.u)
             self.start = 0.0
         self.speed, self.rate = float(d.speed), float(d.rate)
 
@@ -176,7 +179,9 @@ class Reference:
         o, th = self._pose(q, self.mech.drive.link)
         if self.rotary:
             return th + self.arm_angle - self._si(value)
-        return float((o + _rot(th) @ self.anchor - self.anchor) @ self.u) - self._si(value)
+        p = self.guide
+        d = self._world(q, p.slider, p.anchor[p.slider]) - self._world(q, p.guide, p.anchor[p.guide])
+        return float(d @ (_rot(self._pose(q, p.guide)[1]) @ self.u)) - self.offset - self._si(value)
 
     def jacobian(self, q: np.ndarray) -> np.ndarray:
         """Φ_q, analytic."""
@@ -210,8 +215,14 @@ class Reference:
         if self.rotary:
             put(link, slice(row, row + 1), np.zeros((1, 2)), np.array([1.0]))
         else:
-            ra = _rot(self._pose(q, link)[1]) @ self.anchor
-            put(link, slice(row, row + 1), self.u[None], np.array([(_J @ ra) @ self.u]))
+            p = self.guide
+            tg = self._pose(q, p.guide)[1]
+            ug = _rot(tg) @ self.u
+            rs = _rot(self._pose(q, p.slider)[1]) @ p.anchor[p.slider]
+            rg = _rot(tg) @ p.anchor[p.guide]
+            d = self._world(q, p.slider, p.anchor[p.slider]) - self._world(q, p.guide, p.anchor[p.guide])
+            put(p.slider, slice(row, row + 1), ug[None], np.array([(_J @ rs) @ ug]))
+            put(p.guide, slice(row, row + 1), -ug[None], np.array([-(_J @ rg) @ ug + d @ (_J @ ug)]))
         return Jac
 
     def gamma(self, q: np.ndarray, qd: np.ndarray, rate: float) -> np.ndarray:
@@ -237,10 +248,16 @@ class Reference:
         link = self.mech.drive.link
         if self.rotary:
             out.append(rate)
-        else:
-            _, th = self._pose(q, link)
-            _, w = self._pose(qd, link)
-            out.append(rate + w * w * float((_rot(th) @ self.anchor) @ self.u))
+        else:    # as a prismatic pair's normal row, with u for n
+            p = self.guide
+            (os_, ts), (og, tg) = self._pose(q, p.slider), self._pose(q, p.guide)
+            (vs, ws), (vg, wg) = self._pose(qd, p.slider), self._pose(qd, p.guide)
+            rs, rg = _rot(ts) @ p.anchor[p.slider], _rot(tg) @ p.anchor[p.guide]
+            ug = _rot(tg) @ self.u
+            d = (os_ + rs) - (og + rg)
+            dd = (vs + ws * (_J @ rs)) - (vg + wg * (_J @ rg))
+            quad = (-ws * ws * rs + wg * wg * rg) @ ug + 2.0 * wg * (dd @ (_J @ ug)) - wg * wg * (d @ ug)
+            out.append(rate - quad)
         return np.array(out)
 
     def _e_drive(self, speed: float) -> np.ndarray:

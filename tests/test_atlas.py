@@ -63,6 +63,10 @@ ATLAS = {
     "elliptic_trammel": Entry(II, (-0.45, 0.15), "linear drive: x_A = 0.15 m + s reaches ±AB = ±0.3 m (rod square "
                                                   "to B's guide, singular) at s = -0.45 and +0.15 m"),
     "four_bar": Entry(II),
+    "four_bar_coupler_drive": Entry("I(0-1-2-3)", (29.0, 69.0), "the coupler's angle swings between 28.3° and "
+                                    "69.6°, where crank and rocker are parallel (the drive's dead positions)"),
+    "hydraulic_boom": Entry("I(0-2-3-4) ← II(5-6)", (-0.15, 0.22), "the piston head reaches the cylinder's bottom "
+                            "at s = -0.161 m; tie rod 5 and rocker 6 come into line near s = +0.23 m"),
     "koshel_variant1": Entry(III),
     "koshel_variant2": Entry(III),
     "oscillating_cylinder": Entry(II),

@@ -179,7 +179,8 @@ TWELVE = np.arange(12) * 30.0 + 10.0
 #: The tangent mechanism near ±85° needs a finer step.
 FD_STEP_DEG = 0.25
 #: example scenes that do not turn fully: (values, FD step)
-EXAMPLE_RANGES = {"tangent_mechanism": (np.linspace(-85.0, 85.0, 12), 0.05)}
+EXAMPLE_RANGES = {"tangent_mechanism": (np.linspace(-85.0, 85.0, 12), 0.05),
+                  "four_bar_coupler_drive": (np.linspace(34.0, 66.0, 12), 0.05)}   # the coupler's swing
 
 
 def _example_case(path: Path) -> tuple:
@@ -260,7 +261,7 @@ def compare_with_reference(mech, motion, states, tol: float, label: str, kind: s
 
 
 def _si(mech, value: float) -> float:
-    return math.radians(value) if mech.drive.kind == "rotary" else value
+    return math.radians(value) if mech.drive.kind.angular else value
 
 
 # --- (a) plans against the generic Jacobian solve ---------------------------------------------

@@ -285,14 +285,33 @@ def test_work_grows_at_most_quadratically(monkeypatch, kind, order):
 
 # --- the same answers as the exhaustive search ----------------------------------------------
 
+def _exhaustive_original(ix, mech) -> tuple[str, ...]:
+    """The original mechanism's links by the plain search: the driving link; for a drive
+    inside the chain, the first set (fewest links, then [links] order) of links holding the
+    driven ones, connected, touching the frame, with 3n − 2p = 1."""
+    from itertools import combinations
+
+    d = mech.drive
+    if d.kind not in ("coupler", "cylinder"):
+        return (d.link,)
+    core = {d.link} | ({d.guide.guide} if d.kind == "cylinder" else set())
+    for k in range(len(core), len(mech.moving) + 1):
+        for links in combinations(mech.moving, k):
+            pairs = ix.pairs_of(set(links), set(links) | {FRAME})
+            if core <= set(links) and 3 * k - 2 * len(pairs) == 1 and len(ix.components(set(links))) == 1 \
+                    and any(FRAME in (p.a, p.b) for p in pairs):
+                return links
+    raise AssertionError("no original mechanism")
+
+
 def _exhaustive(mech):
     """The textbook search the indexed one replaces: the first pair (then four) of the
     remaining links, in [links] order, that forms a group on the known links."""
     from itertools import combinations
 
     ix = structure._Index(mech)
-    known = {FRAME, mech.drive.link}
-    remaining = [n for n in mech.moving if n != mech.drive.link]
+    known = {FRAME, *_exhaustive_original(ix, mech)}
+    remaining = [n for n in mech.moving if n not in known]
     groups = []
     while remaining:
         group = next((structure._dyad(ix, known, a, b) for a, b in combinations(remaining, 2)
