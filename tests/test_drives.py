@@ -226,3 +226,26 @@ def test_link_pinned_twice_to_the_frame_cannot_be_driven():
     with pytest.raises(SceneError) as err:
         build_mechanism(parse_scene(text.replace('link = "2"', 'link = "1"')))
     assert "cannot turn" in str(err.value)
+
+
+def test_a_short_step_before_a_requested_value_is_no_jump():
+    """Requested strokes put short steps into the walk's grid; the next full step must not
+    read as a jump of the branch (moves are compared per unit of stroke)."""
+    motion = _solve(CYLINDER.read_text(), [-0.16, -0.12], 0)
+    alone = _solve(CYLINDER.read_text(), [-0.16], 0)
+    assert np.allclose(motion.position("B")[0], alone.position("B")[0], atol=1e-12, rtol=0)
+
+
+def test_near_the_coupler_drive_dead_position_the_warning_measures_the_distance():
+    """The coupler's smallest angle over a crank turn of the crank-driven four-bar (closed
+    form, sampled finely and refined) is the coupler drive's dead position: 29° lies near it,
+    and the warning's distance is 29° minus that angle."""
+    text = FOUR_BAR.read_text()
+    crank = np.linspace(60.0, 140.0, 8001)
+    by_crank = _solve(text, crank, 0)
+    low = float(np.min(_angle(by_crank, "A", "B")))
+    mech = build_mechanism(parse_scene(COUPLER.read_text()))
+    motion = analyse(mech, analyse_structure(mech), np.array([29.0]), order=1)
+    assert abs(float(motion.sines["I(0-1-2-3)"][0])) < 0.01
+    away = motion.singular_distance("I(0-1-2-3)", 0)
+    assert away == pytest.approx(29.0 - low, rel=0.05)

@@ -28,7 +28,7 @@ from ..model import Mechanism
 from ..scene import DriveKind
 from ..structure import DrivenGroup
 from .generic import GroupEquations, States, _dot
-from .state import J, LinkState
+from .state import J
 
 __all__ = ["DrivenEquations"]
 
@@ -52,9 +52,8 @@ class DrivenEquations(GroupEquations):
             self.target = np.radians(values) - math.radians(d.sketch_value)
         else:
             p = d.guide
-            u, xs, yg = p.direction, mech.links[p.slider].local, mech.links[p.guide].local
             # the anchors' offset along the guide in the sketch, where every pose is the identity
-            self.target = values + float(np.dot(p.anchor[p.slider] - p.anchor[p.guide], u))
+            self.target = values + float(np.dot(p.anchor[p.slider] - p.anchor[p.guide], p.direction))
 
     def at(self, i: int) -> "DrivenEquations":
         """The same equations at position ``i`` alone (its drive value)."""
@@ -125,7 +124,3 @@ class DrivenEquations(GroupEquations):
             m[:, -1] *= self.size
         return m
 
-
-def sketch_states(mech: Mechanism, group: DrivenGroup, n: int) -> dict[str, LinkState]:
-    """The driven group's links at their sketch poses (θ = 0, origin 0) at ``n`` positions."""
-    return {name: LinkState(np.zeros(n), np.zeros((n, 2))) for name in group.links}

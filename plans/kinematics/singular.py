@@ -115,6 +115,11 @@ class LocalPoser:
             states[g.m], states[g.n] = o.m, o.n
         return pose, states
 
+    def _unit(self, n: int) -> np.ndarray:
+        """Metres per unit of each of a pose vector's n entries (x_o, y_o, θ per link): 1 for
+        coordinates, the mechanism's size for angles, so that moves compare as lengths."""
+        return np.tile([1.0, 1.0, self.mech.size], n // 3)
+
     def condition(self, x: float) -> float | None:
         """The target group's condition figure at drive value x, or None when x cannot be
         reached from position i without the group falling apart or passing a singular
@@ -128,7 +133,7 @@ class LocalPoser:
             got = self._pose_at(xk, prev)
             if got is None:
                 return None
-            moved = max((np.max(np.abs(got[0][n] - prev[n])) for n in prev), default=0.0)
+            moved = max((np.max(np.abs(got[0][n] - prev[n]) * self._unit(len(prev[n]))) for n in prev), default=0.0)
             if moved > 0.05 * self.mech.size and moved > 0.05 * self.mech.size * abs(xk - prev_x) / self.step:
                 return None              # the branch jumped
             prev, prev_x, states = got[0], xk, got[1]

@@ -429,8 +429,10 @@ def _walk(mech: Mechanism, g: ComplexGroup, eq: GroupEquations, states: dict[str
             q[i] = result.q[0]
             if prev is not None:
                 moved = np.max(np.abs(q[i, cols] - q[prev, cols]))
-                # the step before, or for the first step its linear prediction
-                before = np.max(np.abs(q[prev, cols] - q[prev2, cols])) if prev2 is not None else \
+                # the step before, for a step as long as this one (a requested value makes a
+                # short step in the grid), or for the first step its linear prediction
+                before = np.max(np.abs(q[prev, cols] - q[prev2, cols])) \
+                    * abs(grid[i] - grid[prev]) / abs(grid[prev] - grid[prev2]) if prev2 is not None else \
                     _predicted_move(eq.at(i), q[prev], known(i), cols)
                 if moved > 0.01 * mech.size and moved > JUMP_RATIO * before:
                     raise fail(i, "the assembly branch would jump between neighbouring steps (a limit "
