@@ -1,4 +1,4 @@
-"""The ``plans`` command: render scenes, check drawings, render the bundled examples."""
+"""The ``plans`` command: render scenes, check drawings, render the bundled examples, make handouts."""
 
 from __future__ import annotations
 
@@ -128,6 +128,51 @@ def _check(paths: Sequence[str]) -> int:
     return 1 if failed else 0
 
 
+def _handout(source: str, out: str, quiet: bool, random: str | None, seed: str | None) -> int:
+    """``plans handout``: variants from a variants file, or ``--random N`` around a base scene;
+    every variant solved before anything is written (plans.handout)."""
+    from . import handout as ho   # here: the other commands need none of it
+
+    check_folder(out)
+    require_cairo()              # the answer keys are SVG and PDF
+    if random is None:
+        if seed is not None:
+            raise OutputError("--seed goes with --random N (the variants file gives its variants)", key="--seed")
+        h = ho.read_variants(source)
+        bar = ho.Progress(len(h.variants), "solving")
+        drawn = []
+        for v in h.variants:
+            drawn.append(ho.solve_variant(h, v))
+            bar(v.number, drawn[-1].name)
+    else:
+        count = _count(random, "--random", 1, ho.MAX_VARIANTS)
+        number = _count(seed if seed is not None else "0", "--seed", 0, 2 ** 63 - 1)
+        bar = ho.Progress(count, "drawing")
+        h, drawn = ho.random_variants(source, count, number, progress=bar)
+    bar.close()
+    bar = ho.Progress(len(drawn), "writing")
+    ho.write_handout(h, drawn, out, progress=bar)
+    bar.close()
+    if not quiet:
+        extra = f", seed {h.seed}, |condition| ≥ {h.margin:g} ({h.redraws} draw{'s' if h.redraws != 1 else ''} rejected and redrawn)" if h.seed is not None else ""
+        print(f"wrote {len(drawn)} variants of {h.base.name}{extra} to {out}/ (open {out}/index.html)")
+    for d in drawn:
+        for w in d.sheets.warnings:
+            print(f"warning: {w}", file=sys.stderr)
+    return 0
+
+
+def _count(text: str, option: str, lo: int, hi: int) -> int:
+    """A whole number ``lo``..``hi`` given to ``option`` (one line naming the option otherwise)."""
+    try:
+        n = int(text)
+    except ValueError:
+        raise OutputError(f"{text!r} is not a whole number; give one from {lo} to {hi}", key=option) from None
+    if not lo <= n <= hi:
+        raise OutputError(f"{n} is out of range; give one from {lo} to {hi}", key=option)
+    return n
+
+
 def _examples() -> list[Path]:
     root = resources.files("plans.examples")
     return sorted(Path(str(p)) for p in root.iterdir() if p.name.endswith(".toml"))
@@ -159,6 +204,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     d.add_argument("-o", "--output", default="output", metavar="DIR")
     d.add_argument("-q", "--quiet", action="store_true")
     _format_options(d)
+    h = sub.add_parser("handout", help="variants for a class: assignment sheets, answer keys (SVG, PDF, JSON) "
+                       "and index.html")
+    h.add_argument("source", metavar="VARIANTS.toml|BASE.toml",
+                   help="a variants file (base = SCENE, [[variant]] tables), or with --random a base scene")
+    h.add_argument("--random", metavar="N", help="draw N variants around the base scene (lengths ±20 %%, the "
+                   "angle over the turn, ω from a standard series), each away from singular positions")
+    h.add_argument("--seed", metavar="S", help="seed of --random (default 0): the same seed gives the same files")
+    h.add_argument("-o", "--output", default="handout", metavar="DIR")
+    h.add_argument("-q", "--quiet", action="store_true")
     b = sub.add_parser("bench", help="measure what accuracy costs in time: tables, charts and bench.json")
     b.add_argument("-o", "--output", default="output/bench", metavar="DIR")
     b.add_argument("--quick", action="store_true", help="a few small cases only (seconds; for tests)")
@@ -169,6 +223,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             dpi = parse_dpi(args.dpi)
             scenes = args.scenes if args.command == "render" else [str(p) for p in _examples()]
             return _render(scenes, args.output, args.quiet, formats, dpi)
+        if args.command == "handout":
+            return _handout(args.source, args.output, args.quiet, args.random, args.seed)
         if args.command == "bench":
             from .bench import run   # imported here: the other commands need none of it
 

@@ -1,0 +1,148 @@
+"""``index.html`` of a handout: every variant's assignment and answer key, for the screen and
+for printing on A4.
+
+On screen: a cover (title, base scene, seed and margin, a table of the variants' data with
+links), then every page. In print the cover is left out; each variant's assignment is one A4
+landscape page (the A3 landscape sheet at 70.7 %: the same proportions), then, variant by
+variant, a page with the key's values and one page per key sheet (A4 landscape or portrait
+as the sheet is). The sheets are ``<img>`` of the SVG files beside it (relative paths, so the
+folder can be moved); the text holds no date or absolute path: the same handout gives the same
+bytes.
+"""
+
+from __future__ import annotations
+
+import html
+import json
+from typing import TYPE_CHECKING, Sequence
+
+from .export import sheet_size_mm
+
+if TYPE_CHECKING:
+    from .handout import Drawn, Handout
+
+__all__ = ["index_html", "CSS"]
+
+CSS = """\
+body { font-family: "DejaVu Serif", serif; margin: 1em; color: #000; }
+h1 { font-size: 1.5em; } h2 { font-size: 1.1em; margin: 0 0 0.4em; }
+table { border-collapse: collapse; font-size: 0.9em; }
+td, th { border: 1px solid #999; padding: 0.15em 0.5em; text-align: left; }
+td.n { text-align: right; font-variant-numeric: tabular-nums; }
+img.sheet { display: block; max-width: 100%; height: auto; border: 1px solid #ccc; }
+section.page { margin: 2em 0; }
+@page { size: A4 portrait; margin: 10mm; }
+@page wide { size: A4 landscape; margin: 8mm; }
+@media print {
+  body { margin: 0; }
+  .cover { display: none; }
+  section.page { margin: 0; break-after: page; page-break-after: always; break-inside: avoid; }
+  section.page:last-of-type { break-after: auto; page-break-after: auto; }
+  section.wide { page: wide; }
+  img.sheet { border: none; width: auto; max-width: 100%; }
+  section.wide img.sheet { max-height: 184mm; }
+  section.tall img.sheet { max-height: 268mm; }
+  h2 { font-size: 10pt; margin: 0 0 2mm; }
+  table { font-size: 8pt; }
+}
+"""
+
+
+def _e(text: object) -> str:
+    return html.escape(str(text), quote=True)
+
+
+def _g(x: float) -> str:
+    return f"{x:.4g}"
+
+
+def _shape(svg: str) -> str:
+    """``wide`` for a landscape sheet, ``tall`` for a portrait one (its page's orientation)."""
+    size = sheet_size_mm(svg)
+    return "wide" if size is None or size[0] >= size[1] else "tall"
+
+
+def _values_table(report: dict, angular: bool, drive: str) -> str:
+    """The key's values, position by position: |v|, |a| of the moving points, ω, ε of the links,
+    the sliding v, a of the prismatic pairs, and the scales."""
+    rows = []
+    for pos in report["positions"]:
+        where = f"φ<sub>{_e(drive)}</sub> = {pos['angle']:g}°" if angular else f"s = {pos['displacement']:g} m"
+        rows.append(f'<tr><th colspan="3">{where}</th></tr>')
+        rows.append("<tr><th>point</th><th>|v|, m/s</th><th>|a|, m/s²</th></tr>")
+        for name, p in pos["points"].items():
+            if "v" not in p or not any(p["v"]) and not any(p.get("a", [0.0])):
+                continue
+            a = _g(sum(c * c for c in p["a"]) ** 0.5) if "a" in p else "—"
+            rows.append(f'<tr><td>{_e(name)}</td><td class="n">{_g(sum(c * c for c in p["v"]) ** 0.5)}</td>'
+                        f'<td class="n">{a}</td></tr>')
+        rows.append("<tr><th>link</th><th>ω, rad/s</th><th>ε, rad/s²</th></tr>")
+        for name, link in pos["links"].items():
+            if "omega" in link:
+                rows.append(f'<tr><td>{_e(name)}</td><td class="n">{_g(link["omega"])}</td>'
+                            f'<td class="n">{_g(link["epsilon"]) if "epsilon" in link else "—"}</td></tr>')
+        sliders = [(k, s) for k, s in pos.get("sliders", {}).items() if "v" in s]
+        if sliders:
+            rows.append("<tr><th>slider</th><th>v<sub>rel</sub>, m/s</th><th>a<sub>rel</sub>, m/s²</th></tr>")
+            for k, s in sliders:
+                rows.append(f'<tr><td>{_e(k)}</td><td class="n">{_g(s["v"])}</td>'
+                            f'<td class="n">{_g(s["a"]) if "a" in s else "—"}</td></tr>')
+        scales = "; ".join(f"{_e(k.replace('mu_', 'μ'))} = {v:g}" for k, v in pos["scales"].items())
+        rows.append(f'<tr><td colspan="3">scales: {scales}</td></tr>')
+    return "<table>\n" + "\n".join(rows) + "\n</table>"
+
+
+def index_html(h: "Handout", drawn: Sequence["Drawn"], *, margin: float | None = None) -> str:
+    """The index page's text (see the module docstring)."""
+    pos_key, speed_key, rate_key = h.keys
+    drive = str(h.base_data["drive"]["link"])
+    sym = (f"φ<sub>{_e(drive)}</sub>, °", f"ω<sub>{_e(drive)}</sub>, rad/s", f"ε<sub>{_e(drive)}</sub>, rad/s²") \
+        if h.angular else ("s, m", "v, m/s", "a, m/s²")
+    names = list(h.base_data.get("lengths", {}))
+    out = ["<!DOCTYPE html>", '<html lang="en">', "<head>", '<meta charset="utf-8">',
+           f"<title>{_e(h.title)} — handout, {len(drawn)} variants</title>", f"<style>\n{CSS}</style>", "</head>",
+           "<body>", '<section class="cover">', f"<h1>{_e(h.title)}: {len(drawn)} variants</h1>",
+           f"<p>Base scene: <code>{_e(h.base.name)}</code> (copied beside this page); the variants: "
+           f'<a href="variants.toml">variants.toml</a>.</p>']
+    if h.seed is not None:
+        out.append(f"<p>Drawn at random with seed {h.seed}: each length within ±20 % of the base's, the angle over "
+                   f"the turn, ω from a standard series; every variant assembles and every asked position keeps a "
+                   f"margin from singular positions: |condition| ≥ {margin:g} in every group (plans warns below "
+                   f"0.01; 0 is singular).</p>")
+    out.append("<p>Printing (A4): the assignments come first, one a page; then each variant's answer key: its "
+               "values, then one page a sheet.</p>")
+    head = "".join(f"<th>{_e(n)}, m</th>" for n in names) + "".join(f"<th>{s}</th>" for s in sym)
+    out += ["<table>", f"<tr><th>variant</th>{head}<th>assignment</th><th>answer key</th></tr>"]
+    for d in drawn:
+        data = d.scene
+        lengths = {n: v for n, v in zip(names, (_length(d, n, h) for n in names))}
+        dv = data.drive
+        cells = "".join(f'<td class="n">{v:g}</td>' for v in lengths.values())
+        cells += (f'<td class="n">{", ".join(f"{x:g}" for x in dv.values)}</td><td class="n">{dv.speed:g}</td>'
+                  f'<td class="n">{dv.rate:g}</td>')
+        n = _e(d.name)
+        out.append(f'<tr><td><a href="#{n}">{n}</a></td>{cells}<td><a href="{n}/{n}-assignment.pdf">PDF</a></td>'
+                   f'<td><a href="#{n}-key">values</a>, <a href="{n}/{n}.json">JSON</a></td></tr>')
+    out += ["</table>", "</section>"]
+    for d in drawn:
+        n = _e(d.name)
+        out += [f'<section class="page wide assignment" id="{n}">', f"<h2>{_e(d.name)} — assignment</h2>",
+                f'<img class="sheet" src="{n}/{n}-assignment.svg" alt="{n}: assignment sheet">', "</section>"]
+    for d in drawn:
+        n = _e(d.name)
+        out += [f'<section class="page tall key" id="{n}-key">', f"<h2>{_e(d.name)} — answer key: values</h2>",
+                _values_table(json.loads(d.sheets.json), h.angular, drive),
+                f'<p>Files: <a href="{n}/{n}.json">{n}.json</a>, <a href="{n}/{n}.toml">{n}.toml</a> (its scene).</p>',
+                "</section>"]
+        for sheet in d.sheets:
+            f = _e(sheet.file)
+            out += [f'<section class="page {_shape(sheet.svg)} key-sheet">',
+                    f"<h2>{_e(d.name)} — answer key: {_e(sheet.name)}</h2>",
+                    f'<img class="sheet" src="{n}/{f}" alt="{n}: {_e(sheet.name)}">', "</section>"]
+    out += ["</body>", "</html>", ""]
+    return "\n".join(out)
+
+
+def _length(d: "Drawn", name: str, h: "Handout") -> float:
+    """The variant's value of the base length ``name`` (m)."""
+    return float(d.variant.lengths.get(name, h.base_data["lengths"][name]))
