@@ -272,12 +272,11 @@ def solve_variant(h: Handout, v: Variant) -> Drawn:
     try:
         sheets = render(scene, stem=name)
     except SceneError as exc:      # a link's lengths that cannot form its shape
-        raise SceneError(f"{name} cannot be built: {exc.message} (at {exc.key}); change its lengths",
-                         file=file, key=key) from None
+        where = f" (link {exc.key[len('links.'):]})" if exc.key and exc.key.startswith("links.") else ""
+        raise SceneError(f"{name} cannot be built: {exc.message}{where}", file=file, key=key) from None
     except PlansError as exc:      # does not assemble, or singular, at an asked position
         why = str(exc).removeprefix(f"{h.base}, ").removeprefix(f"{h.base}: ")
-        raise SceneError(f"{name} cannot be drawn: {why}; change its lengths or drive values",
-                         file=file, key=key) from None
+        raise SceneError(f"{name} cannot be drawn: {why}", file=file, key=key) from None
     return Drawn(v, name, scene, sheets)
 
 
