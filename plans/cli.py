@@ -154,7 +154,7 @@ def _handout(source: str, out: str, quiet: bool, random: str | None, seed: str |
     ho.write_handout(h, drawn, out, progress=bar)
     bar.close()
     if not quiet:
-        extra = f", seed {h.seed}, |condition| ≥ {h.margin:g} ({h.redraws} draw{'s' if h.redraws != 1 else ''} rejected and redrawn)" if h.seed is not None else ""
+        extra = f", seed {h.seed}, margins |condition| ≥ {ho.margin_text(h)} ({h.redraws} draw{'s' if h.redraws != 1 else ''} rejected and redrawn)" if h.seed is not None else ""
         print(f"wrote {len(drawn)} variants of {h.base.name}{extra} to {out}/ (open {out}/index.html)")
     for d in drawn:
         for w in d.sheets.warnings:

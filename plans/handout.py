@@ -43,6 +43,7 @@ from .errors import PlansError, SceneError
 from .export import convert
 from .output import check_folder, write_files
 from .pipeline import Sheets, render
+from .kinematics import WARN_SIN
 from .scene import Scene, parse_scene
 
 __all__ = ["MARGIN_SIN", "LENGTH_SPREAD", "ANGLE_STEP_DEG", "SPEED_SERIES", "MAX_VARIANTS", "MAX_TRIES",
@@ -54,6 +55,11 @@ __all__ = ["MARGIN_SIN", "LENGTH_SPREAD", "ANGLE_STEP_DEG", "SPEED_SERIES", "MAX
 #: equations, 0 at a singular position; plans warns below WARN_SIN = 1e-2). 0.1 keeps the
 #: unknown directions at least 5.7° from parallel.
 MARGIN_SIN = 0.1
+#: Groups whose condition figure is a sine (class II closed forms, class III groups); the others
+#: (class IV groups, a drive inside the chain) report σmin/σmax of a Newton Jacobian, which is
+#: small even far from a singular position (0.02–0.05 in the examples): for them the margin is
+#: half the base scene's own smallest figure, between WARN_SIN and MARGIN_SIN.
+SINE_GROUPS = ("II(", "III(")
 #: Random lengths: the base's × U(1 − spread, 1 + spread).
 LENGTH_SPREAD = 0.2
 #: Random crank angles: multiples of this over the turn, degrees.
@@ -96,6 +102,7 @@ class Handout:
     source: Path | None = None
     seed: int | None = None
     margin: float | None = None
+    margins: Mapping[str, float] = field(default_factory=dict)
     redraws: int = 0
 
     @property
@@ -285,6 +292,25 @@ def worst_sine(sheets: Sheets) -> float:
     return min((float(np.min(np.abs(s))) for s in sheets.motion.sines.values()), default=1.0)
 
 
+def group_margins(base: Sheets, margin: float = MARGIN_SIN) -> dict[str, float]:
+    """The margin each group of the base scene must keep: ``margin`` for a group whose figure is
+    a sine (SINE_GROUPS), else half the base's smallest |figure|, within WARN_SIN…margin."""
+    out = {}
+    for g, s in base.motion.sines.items():
+        own = 0.5 * float(np.min(np.abs(s)))
+        out[g] = margin if g.startswith(SINE_GROUPS) else min(margin, max(WARN_SIN, own))
+    return out
+
+
+def _short_of(sheets: Sheets, margins: Mapping[str, float]) -> str:
+    """Why ``sheets`` misses the margins ("" when it keeps them all)."""
+    for g, s in sheets.motion.sines.items():
+        worst = float(np.min(np.abs(s)))
+        if worst < margins.get(g, MARGIN_SIN):
+            return f"group {g}: condition {worst:.3g} below the margin {margins.get(g, MARGIN_SIN):g}"
+    return ""
+
+
 # --- random variants -----------------------------------------------------------------------
 
 def _round3(x: float) -> float:
@@ -332,8 +358,9 @@ def random_variants(path: str | Path, count: int, seed: int, *, margin: float = 
     failed draw is drawn again (up to MAX_TRIES times a variant). Returns the handout and the
     solved variants."""
     h = read_base(path)
+    margins = group_margins(render(parse_scene(h.base_data, file=str(h.base))), margin)
     h = Handout(base=h.base, base_text=h.base_text, base_data=h.base_data, variants=tuple(Variant(k + 1)
-                for k in range(count)), title=h.title, seed=seed, margin=margin)
+                for k in range(count)), title=h.title, seed=seed, margin=margin, margins=margins)
     rng = np.random.default_rng(seed)
     drawn: list[Drawn] = []
     redraws = 0
@@ -347,21 +374,21 @@ def random_variants(path: str | Path, count: int, seed: int, *, margin: float = 
                 why = str(exc)
                 redraws += 1
                 continue
-            worst = worst_sine(d.sheets)
-            if worst >= margin:
+            why = _short_of(d.sheets, margins)
+            if not why:
                 drawn.append(d)
                 break
-            why = f"{d.name}: condition {worst:.3g} below the margin {margin:g}"
+            why = f"{d.name}: {why}"
             redraws += 1
         else:
-            raise SceneError(f"no variant among {MAX_TRIES} draws assembles with |condition| ≥ {margin:g} at the "
-                             f"asked position (the last: {why}); the base's lengths ±{LENGTH_SPREAD:.0%} give too few "
+            raise SceneError(f"no variant among {MAX_TRIES} draws assembles keeping the margin from singular "
+                             f"positions (the last: {why}); the base's lengths ±{LENGTH_SPREAD:.0%} give too few "
                              "mechanisms that work: check the base scene", file=str(h.base), key="--random")
         if progress:
             progress(number, drawn[-1].name)
     variants = tuple(d.variant for d in drawn)
     return Handout(base=h.base, base_text=h.base_text, base_data=h.base_data, variants=variants, title=h.title,
-                   seed=seed, margin=margin, redraws=redraws), drawn
+                   seed=seed, margin=margin, margins=margins, redraws=redraws), drawn
 
 
 # --- writing -------------------------------------------------------------------------------
@@ -412,8 +439,8 @@ def _variants_file(h: Handout, base_name: str) -> str:
     (``plans handout`` on it, beside the base scene's copy, gives the same answer keys)."""
     lines = [f"# plans handout: {len(h.variants)} variants of {h.base.name}"]
     if h.seed is not None:
-        lines.append(f"# drawn with --random {len(h.variants)} --seed {h.seed}: lengths ±{LENGTH_SPREAD:.0%}, every "
-                     f"asked position with |condition| ≥ {h.margin:g} in every group")
+        lines.append(f"# drawn with --random {len(h.variants)} --seed {h.seed}: lengths ±{LENGTH_SPREAD:.0%}; every "
+                     f"asked position keeps |condition| ≥ the margin of each group: {margin_text(h)}")
     lines += ["", f"base = {_toml_value(base_name)}", f"title = {_toml_value(h.title)}"]
     for v in h.variants:
         data = variant_data(h, v)
@@ -422,6 +449,11 @@ def _variants_file(h: Handout, base_name: str) -> str:
             lines.append(f"lengths = {_toml_value(data['lengths'])}")
         lines += [f"{key} = {_toml_value(data['drive'][key])}" for key in h.keys if key in data["drive"]]
     return "\n".join(lines) + "\n"
+
+
+def margin_text(h: Handout) -> str:
+    """``II(2-3) 0.1, II(4-5) 0.1``: each group's margin, as the index page and variants.toml say it."""
+    return ", ".join(f"{g} {m:g}" for g, m in h.margins.items()) or "no group to keep"
 
 
 def _base_name(h: Handout) -> str:
@@ -467,8 +499,7 @@ def write_handout(h: Handout, drawn: Sequence[Drawn], out: str | Path, *,
     try:
         for k, d in enumerate(drawn, 1):
             folder = out / d.name
-            svg = draw_assignment(d.sheets.motion, d.scene, variant=d.name.replace("variant-", "variant "),
-                                  lengths=variant_data(h, d.variant).get("lengths"))
+            svg = _assignment(h, d, draw_assignment)
             extra = {f"{d.name}-assignment.svg": svg}
             written += d.sheets.save(folder, formats="svg,pdf")
             written += write_files({**convert(extra, ("svg", "pdf")),
@@ -491,6 +522,19 @@ def write_handout(h: Handout, drawn: Sequence[Drawn], out: str | Path, *,
                 pass
         raise
     return written
+
+
+def _assignment(h: Handout, d: Drawn, draw: Callable[..., str]) -> str:
+    """The assignment sheet's SVG: the scheme at the variant's first position (constructed from
+    the solved motion), its data, the points and links to find."""
+    from .constructions.scheme import scheme
+
+    motion = d.sheets.motion
+    mech = motion.mechanism
+    return draw(lambda mu: scheme(motion, 0, mu), d.scene, variant=d.name.replace("variant-", "variant "),
+                points=[p for p in mech.sketch if motion.carrier(p) != "0"],
+                links=[n for n in mech.moving if n != d.scene.drive.link],
+                lengths=variant_data(h, d.variant).get("lengths"))
 
 
 def _scene_file(h: Handout, d: Drawn) -> str:

@@ -105,10 +105,14 @@ def index_html(h: "Handout", drawn: Sequence["Drawn"], *, margin: float | None =
            f"<p>Base scene: <code>{_e(h.base.name)}</code> (copied beside this page); the variants: "
            f'<a href="variants.toml">variants.toml</a>.</p>']
     if h.seed is not None:
+        from .handout import margin_text
+
         out.append(f"<p>Drawn at random with seed {h.seed}: each length within ±20 % of the base's, the angle over "
                    f"the turn, ω from a standard series; every variant assembles and every asked position keeps a "
-                   f"margin from singular positions: |condition| ≥ {margin:g} in every group (plans warns below "
-                   f"0.01; 0 is singular).</p>")
+                   f"margin from singular positions: |condition| ≥ {margin:g} in every group whose condition is a "
+                   f"sine (class II and III; plans warns below 0.01, 0 is singular); a class IV group or a drive "
+                   f"inside the chain keeps half the base's own smallest figure (σ<sub>min</sub>/σ<sub>max</sub>). "
+                   f"Here: {_e(margin_text(h))}.</p>")
     out.append("<p>Printing (A4): the assignments come first, one a page; then each variant's answer key: its "
                "values, then one page a sheet.</p>")
     head = "".join(f"<th>{_e(n)}, m</th>" for n in names) + "".join(f"<th>{s}</th>" for s in sym)

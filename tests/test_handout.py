@@ -89,6 +89,10 @@ def test_assignment_sheet_says_the_data_and_leaves_room(tmp_path, random3):
     assert 'data-area="velocity"' in svg and 'data-area="acceleration"' in svg
     assert plans.export.sheet_size_mm(svg) == (420.0, 297.0)     # A3 landscape
     assert "data-quantity" not in svg                       # no answer on the assignment
+    from plans.layout import measure_layout
+
+    layout = measure_layout(svg)
+    assert all(v == 0 for v in layout.counts.values()), layout
 
 
 def test_random_variants_within_ranges_margin_and_equal_direct_render(random3):
@@ -109,7 +113,23 @@ def test_random_variants_within_ranges_margin_and_equal_direct_render(random3):
         assert report == direct.report
         for pos in report["positions"]:
             assert min(abs(c) for c in pos["conditioning"].values()) >= MARGIN_SIN
-    assert f"|condition| ≥ {MARGIN_SIN:g}" in (random3 / "index.html").read_text(encoding="utf-8")
+    html = (random3 / "index.html").read_text(encoding="utf-8")
+    assert f"|condition| ≥ {MARGIN_SIN:g}" in html and f"II(2-3) {MARGIN_SIN:g}, II(4-5) {MARGIN_SIN:g}" in html
+
+
+def test_a_class_iv_base_keeps_half_its_own_figure(tmp_path):
+    """A class IV group reports σmin/σmax (0.02–0.05 in the example): its margin is half the base's
+    smallest figure, and every drawn variant keeps it; the assignment's data table stays tidy."""
+    from plans.layout import measure_layout
+
+    base = next(p for p in EXAMPLES if p.stem == "class4_six_link")
+    out = _handout(tmp_path, str(base), "--random", "2", "--seed", "3")
+    own = min(abs(c) for pos in plans.render(base).report["positions"] for c in pos["conditioning"].values())
+    for k in (1, 2):
+        report = json.loads((out / f"variant-0{k}" / f"variant-0{k}.json").read_text(encoding="utf-8"))
+        assert min(abs(c) for pos in report["positions"] for c in pos["conditioning"].values()) >= own / 2
+        layout = measure_layout((out / f"variant-0{k}" / f"variant-0{k}-assignment.svg").read_text(encoding="utf-8"))
+        assert all(v == 0 for v in layout.counts.values()), layout
 
 
 def test_same_seed_same_bytes_other_seed_other_variants(tmp_path, random3):

@@ -10,13 +10,13 @@ finest value of the standard series at which the scheme fits its slot.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
-from typing import Mapping
+from typing import Callable, Mapping, Sequence
 
 from ..constructions.scales import SERIES
-from ..constructions.scheme import scheme as scheme_at
-from ..kinematics import Motion
-from ..scene import FRAME, Scene
+from ..constructions.scheme import Scheme
+from ..scene import Scene
 from .canvas import Canvas, fmt
 from .marks import bounds
 from .scheme import scheme_layers
@@ -49,11 +49,10 @@ _AREAS = {"velocity": ("Velocity plan (pole p)", "μ_V = ________ (m/s)/mm"),
           "acceleration": ("Acceleration plan (pole π)", "μ_a = ________ (m/s²)/mm")}
 
 
-def _fit_mu(motion: Motion, slot: Box) -> float:
-    """The finest series μl (m/mm) at which the scheme at the first position, with room for its
-    labels, fits ``slot``."""
+def _fit_mu(scheme_at: Callable[[float], Scheme], slot: Box) -> float:
+    """The finest series μl (m/mm) at which the scheme, with room for its labels, fits ``slot``."""
     for mu in sorted({float(f"{m:g}e{k}") for k in range(-12, 22) for m in SERIES}):
-        b = bounds(_coords(scheme_at(motion, 0, mu)))
+        b = bounds(_coords(scheme_at(mu)))
         if b[2] - b[0] <= slot.x1 - slot.x0 and b[3] - b[1] <= slot.y1 - slot.y0:
             return mu
     raise ValueError("the scheme fits no series scale")   # a sketch is at most 1e20 m (scene.MAX_COORD_M)
@@ -83,11 +82,22 @@ def _given(scene: Scene, lengths: Mapping[str, float] | None) -> list[str]:
     return cells
 
 
-def _task(motion: Motion, scene: Scene) -> str:
-    """One sentence saying what to draw and find."""
-    mech = motion.mechanism
-    points = [p for p in mech.sketch if motion.carrier(p) != FRAME]
-    links = [n for n in mech.moving if n != scene.drive.link]
+def _flow(widths: Sequence[float], cell: float, columns: int) -> list[tuple[int, int, int]]:
+    """(row, column, span) of each data cell in turn: as many columns as its text needs (all of
+    a row at most), on the next row when the rest of this one is too short."""
+    out, r, c = [], 0, 0
+    for w in widths:
+        span = min(max(1, math.ceil(w / cell - 1e-9)), columns)
+        if c + span > columns:
+            r, c = r + 1, 0
+        out.append((r, c, span))
+        c += span
+    return out
+
+
+def _task(scene: Scene, points: Sequence[str], links: Sequence[str]) -> str:
+    """One sentence saying what to draw and find (the velocities and accelerations of ``points``,
+    the angular ones of ``links``)."""
     kinds = [k for k in ("velocity", "acceleration") if k in scene.draw]
     plans = " and the ".join(f"{k} plan" for k in kinds) or "scheme"
     what = {("velocity",): "velocities", ("acceleration",): "accelerations"}.get(tuple(kinds),
@@ -101,22 +111,27 @@ def _task(motion: Motion, scene: Scene) -> str:
     return sentence + "."
 
 
-def draw_assignment(motion: Motion, scene: Scene, *, variant: str,
-                    lengths: Mapping[str, float] | None = None, style: Style = Style(), layout: Layout = LAYOUT) -> str:
+def draw_assignment(scheme_at: Callable[[float], Scheme], scene: Scene, *, variant: str, points: Sequence[str],
+                    links: Sequence[str], lengths: Mapping[str, float] | None = None, style: Style = Style(),
+                    layout: Layout = LAYOUT) -> str:
     """SVG text of a variant's assignment sheet (A3 landscape): the scheme at the first asked
-    position (in the finest series μl that fits its slot), the given lengths and drive
-    values, the task, and an empty framed area per plan, labelled."""
+    position (``scheme_at(μl)`` constructs it; drawn in the finest series μl that fits its slot),
+    the given lengths and drive values, the task (find the velocities and accelerations of
+    ``points``, the angular ones of ``links``), and an empty framed area per plan, labelled.
+    ``lengths`` names the given lengths as the scene file does (``OA``)."""
     fmt_ = FORMATS[2]
     d = scene.drive
     j = d.link
     L = layout.left
     t = Box(L.x0 + layout.inset, L.y0, L.x1 - layout.inset, L.y1 - 1.0)
     cells = _given(scene, lengths)
-    rows = -(-len(cells) // layout.columns)
-    task = wrap(_task(motion, scene), t.x1 - t.x0 - 6.0, style.text)
+    cw = (t.x1 - t.x0) / layout.columns
+    places = _flow([width(runs(c), style.text, False) + 4.0 for c in cells], cw, layout.columns)
+    rows = max((r for r, _, _ in places), default=-1) + 1
+    task = wrap(_task(scene, points, links), t.x1 - t.x0 - 6.0, style.text)
     top = t.y1 - 5.0 * len(task) - 1.5 - rows * layout.row        # the table's first line
     slot = Box(L.x0, L.y0, L.x1, top - 6.5 - 3.0)
-    mu = _fit_mu(motion, slot)
+    mu = _fit_mu(scheme_at, slot)
     position = (f"φ_{{{j}}} = {_values(d.values, '°')}, ω_{{{j}}} = {d.speed:g} rad/s, ε_{{{j}}} = {d.rate:g} rad/s²"
                 if d.kind.angular else f"s = {_values(d.values, ' m')}, v = {d.speed:g} m/s, a = {d.rate:g} m/s²")
     block = TitleBlock(scene.title, f"Assignment, {variant}", position,
@@ -125,7 +140,7 @@ def draw_assignment(motion: Motion, scene: Scene, *, variant: str,
     dwg, canvas = new_sheet(fmt_, (0.0, 0.0, 1.0, 1.0), ident=ident, style=style, block=block)
     dwg.attribs["data-sheet"] = "assignment"
 
-    sch = scheme_at(motion, 0, mu)
+    sch = scheme_at(mu)
     b = bounds(_coords(sch))
     offset = ((slot.x0 + slot.x1) / 2 - (b[0] + b[2]) / 2, (slot.y0 + slot.y1) / 2 + (b[1] + b[3]) / 2)
     sc = Canvas(dwg, style, offset, slot)
@@ -137,17 +152,10 @@ def draw_assignment(motion: Motion, scene: Scene, *, variant: str,
     caption = "Given" + (f" (the scheme is drawn at φ_{{{j}}} = {d.values[0]:g}°)"
                          if d.kind.angular and len(d.values) > 1 else "")
     canvas.text(texts, (t.x0, top - 2.5), caption, size=style.text)
-    cw = (t.x1 - t.x0) / layout.columns
-    for r in range(rows + 1):
-        y = top + r * layout.row
-        g.add(dwg.line(start=(fmt(t.x0, 3), fmt(y, 3)), end=(fmt(t.x1, 3), fmt(y, 3))))
-    for c in range(layout.columns + 1):
-        x = t.x0 + c * cw
-        g.add(dwg.line(start=(fmt(x, 3), fmt(top, 3)), end=(fmt(x, 3), fmt(top + rows * layout.row, 3))))
-    for k, cell in enumerate(cells):
-        r, c = divmod(k, layout.columns)
-        canvas.text(texts, (t.x0 + c * cw + 2.0, top + r * layout.row + layout.row / 2 + 1.2), cell,
-                    size=style.text, ident=f"{ident}-given{k}")
+    for k, (cell, (r, c, span)) in enumerate(zip(cells, places)):
+        x, y = t.x0 + c * cw, top + r * layout.row
+        g.add(dwg.rect(insert=(fmt(x, 3), fmt(y, 3)), size=(fmt(span * cw, 3), fmt(layout.row, 3))))
+        canvas.text(texts, (x + 2.0, y + layout.row / 2 + 1.2), cell, size=style.text, ident=f"{ident}-given{k}")
     y = top + rows * layout.row + 5.5
     for k, line in enumerate(task):
         canvas.text(texts, (t.x0, y + 5.0 * k), line, size=style.text, ident=f"{ident}-task{k}")
