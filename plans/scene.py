@@ -609,14 +609,14 @@ def _cycle(keys: Mapping[str, Any], drive: Drive, plans: Mapping[str, Any], draw
     """The cycle of ``[drive] positions`` with ``[plans] output`` and ``trace``; None without
     positions (then the cycle sheets and keys are refused)."""
     if not keys:
-        for key in ("output", "trace"):
-            if key in plans:
-                raise SceneError(f"{key} belongs to the cycle sheets; add [drive] positions = N (e.g. 12)",
-                                 key=f"plans.{key}")
         wanted = [d for d in draw if d in CYCLE_SHEETS]
         if wanted:
             raise SceneError(f"draw {wanted[0]!r} shows the whole revolution; add [drive] positions = N (e.g. 12)",
                              key="plans.draw")
+        for key in ("output", "trace"):
+            if key in plans:
+                raise SceneError(f"{key} belongs to the cycle sheets; add [drive] positions = N (e.g. 12)",
+                                 key=f"plans.{key}")
         return None
     n = _positions(keys)
     if "velocities" in draw and n > MAX_VELOCITY_PLANS:

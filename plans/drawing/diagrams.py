@@ -70,7 +70,7 @@ def _graph(dwg, canvas: Canvas, d: Diagrams, g: Graph, ident: str, style: Style,
     # tagged as a plan's vector is (length × μ = |exact value|), so that plans check reads them
     ords = dwg.g(id=f"{ident}-ordinates", stroke=style.construction_colour, stroke_width=thin)
     ords.attribs["data-mu"] = repr(g.mu)
-    ords.attribs["data-plan"] = f"diagram-{g.quantity}"
+    ords.attribs["data-plan"] = "bound"      # drawn at their instants: measured, no plan images to close
     ords.attribs["data-vectors"] = str(len(g.at_positions))
     for k, (x, y, value) in enumerate(g.at_positions):
         el = canvas.line(ords, (x, oy), (x, y), width=style.thin, ink=abs(y - oy) > 0.3, id=f"{ident}-ord{k}")
