@@ -26,12 +26,17 @@ from .constructions.plans import Plan, PlanPoint
 from .constructions.scales import extent_of
 from .constructions.centres import centres_sheet
 from .constructions.koshel import fit_segment, koshel_sheet
+from .constructions.cycle import positions_sheet, velocities_sheet
+from .constructions.diagrams import diagrams
 from .drawing import Heading, Style, draw_centres, draw_plan, draw_scheme
 from .drawing.koshel import draw_koshel
+from .drawing.diagrams import draw_diagrams
+from .drawing.positions import draw_positions, draw_velocities
 from .errors import ConstructionError, OutputError, PlansError
 from .export import DEFAULT_DPI, convert, parse_formats, require_cairo
 from .kinematics import WARN_SIN, Motion, analyse
 from .kinematics.centres import Centres
+from .kinematics.cycle import Cycle, solve_cycle
 from .kinematics.tolerances import CROSS_CHECK_RTOL
 from .output import check_folder, write_files
 from .model import build_mechanism
@@ -55,11 +60,23 @@ class Rendered:
 def solve_scene(scene: Scene) -> Motion:
     """Solve a scene to the order its drawings need (scheme only: positions; the senses of
     ω and ε on the scheme: accelerations)."""
+    return _solve(scene)[0]
+
+
+def _solve(scene: Scene) -> tuple[Motion, Cycle | None]:
+    """The scene's motion and, with ``[drive] positions``, its solved revolution (the motion
+    is then the revolution's N positions)."""
     mech = build_mechanism(scene)
     structure = analyse_structure(mech)
-    order = 2 if "acceleration" in scene.draw or scene.senses else 1 if {"velocity", "centres"} & set(scene.draw) \
-        else 0
-    return analyse(mech, structure, order=order)
+    order = 2 if "acceleration" in scene.draw or scene.senses else \
+        1 if {"velocity", "centres", "velocities"} & set(scene.draw) else 0
+    c = scene.cycle
+    if c is None:
+        return analyse(mech, structure, order=order), None
+    cycle = solve_cycle(mech, structure, positions=c.positions, output=c.output, order=order,
+                        start=None if c.start == "extreme" else scene.drive.values[0],
+                        dense_order=2 if "diagrams" in scene.draw else 0)
+    return cycle.motion, cycle
 
 
 def _scales(scene: Scene, motion: Motion, rest: tuple[bool, bool] = (False, False)) -> Scales:
@@ -245,7 +262,7 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
     None) locates error messages. Nothing here reads or writes a file."""
     path = where or f"scene {scene.title!r}"     # the prefix of the messages below
     try:
-        motion = solve_scene(scene)
+        motion, cycle = _solve(scene)
         rest = at_rest(motion)
         scales = _scales(scene, motion, rest)
     except PlansError as exc:
@@ -306,9 +323,77 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
             sym = "μ_V" if kind == "velocity" else "μ_a"
             files[f"{stem}-{kind}{sfx}.svg"] = draw_plan(plan, heading, ident=f"{kind}{sfx or ''}", style=style,
                                                          notes=tuple(n for n in scales.notes if n.startswith(sym)))
-    data = _no_negative_zero(report(scene, motion, scales))
+    data = report(scene, motion, scales)
+    if cycle is not None:
+        sheets, data["cycle"] = _cycle_sheets(scene, cycle, scales, stem, style)
+        files.update(sheets)
+    data = _no_negative_zero(data)
     files[f"{stem}.json"] = json.dumps(data, indent=1, ensure_ascii=False) + "\n"
     return Rendered(stem, files, motion, scales, tuple(warnings))
+
+
+def _cycle_sheets(scene: Scene, cycle: Cycle, scales: Scales, stem: str, style: Style) -> tuple[dict[str, str], dict]:
+    """The cycle sheets the scene draws (positions, diagrams, velocities) and the report's
+    ``cycle``: the positions, the output's extremes and, with velocities, the table of values
+    (with diagrams, how far the graphical differentiation is from the exact values)."""
+    c, motion, out = scene.cycle, cycle.motion, cycle.output
+    d = motion.mechanism.drive
+    unit = "m" if out.kind == "slider" else "rad"
+    first = "extreme of link " + out.link if c.start == "extreme" else "angle"
+    position = f"{c.positions} positions from φ_{d.link} = {cycle.start % 360.0:.6g}° ({first}), ω_{d.link} = " \
+               f"{d.speed:g} rad/s"
+    files: dict[str, str] = {}
+    data: dict = {"positions": [float(v) for v in motion.values], "start": c.start, "step": cycle.step,
+                  "output": {"link": out.link, "kind": out.kind, "point": out.point, "unit": unit}}
+    ext = cycle.extreme_output
+    if ext is not None:
+        data["extremes"] = [{"angle": float(a) % 360.0, "s": float(s)}
+                            for a, s in zip(cycle.extremes.values, ext.s)]
+    if "positions" in scene.draw:
+        sheet = positions_sheet(motion, cycle.extremes, cycle.dense, output=out.link, point=out.point,
+                                kind=out.kind, extreme_s=None if ext is None else ext.s, trace=c.trace)
+        notes = []
+        if sheet.stroke is not None:
+            a0, a1 = sheet.extreme_angles
+            travel = f"H = {sheet.stroke:.4g} m, the stroke" if out.kind == "slider" else \
+                f"ψ = {math.degrees(sheet.stroke):.4g}°, the swing"
+            notes.append(f"{travel} of link {out.link} between its extreme positions {out.point}′ "
+                         f"(φ_{d.link} = {a0:.2f}°) and {out.point}″ (φ_{d.link} = {a1:.2f}°), drawn thick")
+        files[f"{stem}-positions.svg"] = draw_positions(
+            sheet, Heading(scene.title, "Positions of the mechanism over one revolution", position),
+            ident="positions", style=style, notes=tuple(notes))
+    if "diagrams" in scene.draw:
+        dn = cycle.dense_output
+        dia = diagrams(start=cycle.start, step=cycle.step, positions=c.positions, every=cycle.every, omega=d.speed,
+                       link=out.link, point=out.point, kind=out.kind, s=dn.s, v=dn.v, a=dn.a)
+        g = {gr.quantity: gr for gr in dia.graphs}
+        sym = ("v", "a") if out.kind == "slider" else ("ω", "ε")
+        notes = (f"Solid: exact; dashed: graphical differentiation by chords ({sym[0]} at the middles of the intervals "
+                 f"from the chords of the first graph, {sym[1]} at the positions from the chords of the second).",
+                 f"Graphical {sym[0]} differs from the exact by at most {100 * g['v'].error:.2g} % of {sym[0]}_max, "
+                 f"graphical {sym[1]} by at most {100 * g['a'].error:.2g} % of {sym[1]}_max; "
+                 f"t = (φ_{d.link} − {cycle.start % 360.0:.6g}°)/ω_{d.link}, T = {dia.period:.4g} s.")
+        files[f"{stem}-diagrams.svg"] = draw_diagrams(
+            dia, Heading(scene.title, f"Kinematic diagrams of link {out.link}", position), ident="diagrams",
+            style=style, notes=notes)
+        data["diagrams"] = {"mu_t": dia.mu_t, "mu_phi": dia.mu_phi, "period": dia.period,
+                            "mu": {gr.quantity: gr.mu for gr in dia.graphs},
+                            "graphical_error": {gr.quantity: gr.error for gr in dia.graphs if gr.graphical}}
+    if "velocities" in scene.draw:
+        sheet = velocities_sheet(motion)
+        for cell in sheet.cells:
+            failures = check_plan(cell.plan)
+            if failures:
+                raise PlansError(f"{scene.file or scene.title}: velocity plan of position {cell.index} failed its "
+                                 f"geometric check: {failures[0]} (please report this scene)")
+        files[f"{stem}-velocities.svg"] = draw_velocities(
+            sheet, Heading(scene.title, "Velocity plans of every position", position), ident="velocities", style=style)
+        t = sheet.table
+        data["table"] = {"points": list(t.points), "links": list(t.links), "mu_v": sheet.mu_v,
+                         "rows": [{"position": int(r[0]), "angle": r[1],
+                                   "v": dict(zip(t.points, r[2:2 + len(t.points)])),
+                                   "omega": dict(zip(t.links, r[2 + len(t.points):]))} for r in t.rows]}
+    return files, data
 
 
 def _koshel(motion: Motion, i: int, g: ComplexGroup, still: bool, *, title: str, label: str, ident: str,

@@ -19,12 +19,22 @@ from typing import Any, Mapping
 
 from .errors import SceneError
 
-__all__ = ["Scene", "Slider", "Drive", "read_scene", "parse_scene", "FRAME", "DRAWABLE", "MAX_COORD_M", "MIN_SIZE_M",
+__all__ = ["Scene", "Slider", "Drive", "Cycle", "read_scene", "parse_scene", "FRAME", "DRAWABLE", "MAX_COORD_M", "MIN_SIZE_M",
            "MAX_ANGLE_DEG", "MAX_WALK_STEPS", "MAX_POSITIONS", "MAX_OMEGA", "MAX_EPSILON", "MAX_SPEED",
            "MAX_ACCELERATION", "MIN_RATE", "MAX_TITLE_CHARS"]
 
 FRAME = "0"
-DRAWABLE = ("scheme", "velocity", "acceleration", "centres")
+DRAWABLE = ("scheme", "velocity", "acceleration", "centres", "positions", "diagrams", "velocities")
+#: Sheets of the whole cycle: they need ``[drive] positions = N``.
+CYCLE_SHEETS = ("positions", "diagrams", "velocities")
+#: Fewest and most positions of a cycle (``[drive] positions``): three chords at least for the
+#: graphical differentiation; one a degree at most (as MAX_POSITIONS).
+MIN_CYCLE_POSITIONS = 3
+#: Most positions whose velocity plans share one sheet (``draw = ["velocities"]``): 24 plans
+#: on an A3 sheet are about 60 mm each, still readable.
+MAX_VELOCITY_PLANS = 24
+#: How the cycle's first position is chosen (``[drive] start``).
+CYCLE_STARTS = ("angle", "extreme")
 #: What a scene draws when [plans] says nothing.
 DEFAULT_DRAW = ("scheme", "velocity", "acceleration")
 _TOP_KEYS = {"title", "description", "points", "links", "sliders", "drive", "lengths", "plans", "scales"}
@@ -143,6 +153,21 @@ class Drive:
 
 
 @dataclass(frozen=True)
+class Cycle:
+    """One revolution of a crank in ``positions`` equal steps (``[drive] positions = N``).
+
+    ``start`` is ``"angle"`` (the first position is the drive's ``angle``) or ``"extreme"``
+    (the first position is the one where the output link's displacement, or angle, is
+    smallest: found by the kinematics). ``output`` names the output link (``[plans] output``,
+    by default the last moving link); ``trace`` the points whose trajectories are drawn."""
+
+    positions: int
+    start: str = "angle"
+    output: str = ""
+    trace: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
 class Scene:
     """A validated scene. ``lengths`` maps an unordered point pair to a distance in metres."""
 
@@ -157,6 +182,7 @@ class Scene:
     senses: bool = False          # the scheme shows the senses of ω and ε of every moving link
     description: str = ""
     file: str | None = None
+    cycle: Cycle | None = None    # [drive] positions = N: the whole revolution (cycle sheets)
 
     def links_of(self, point: str) -> tuple[str, ...]:
         """Names of the links that carry ``point``, in scene order."""
@@ -287,12 +313,18 @@ def _parse(data: Mapping[str, Any], file: str | None) -> Scene:
     points = _points(_table(data, "points", required=True))
     links = _links(_table(data, "links", required=True), points)
     sliders = _sliders(data.get("sliders", []), points, links)
-    drive = _drive(_table(data, "drive", required=True), links, sliders, points)
+    drive_table = _table(data, "drive", required=True)
+    cycle_keys = {k: drive_table[k] for k in ("positions", "start") if k in drive_table}
+    drive = _drive({k: v for k, v in drive_table.items() if k not in cycle_keys}, links, sliders, points,
+                   cycle=cycle_keys)
     lengths = _lengths(_table(data, "lengths"), points, links)
-    draw, senses = _draw(_table(data, "plans"))
+    plans_table = _table(data, "plans")
+    draw, senses = _draw({k: v for k, v in plans_table.items() if k not in ("output", "trace")})
+    cycle = _cycle(cycle_keys, drive, plans_table, draw, points, links)
     scales = _scales(_table(data, "scales"))
     return Scene(title=title or "Mechanism", points=points, links=links, sliders=sliders, drive=drive,
-                 lengths=lengths, draw=draw, senses=senses, scales=scales, description=description, file=file)
+                 lengths=lengths, draw=draw, senses=senses, scales=scales, description=description, file=file,
+                 cycle=cycle)
 
 
 # --- helpers -----------------------------------------------------------------------------
@@ -477,7 +509,7 @@ def _sliders(items: Any, points: Mapping[str, Any], links: Mapping[str, Any]) ->
 
 
 def _drive(table: Mapping[str, Any], links: Mapping[str, Any], sliders: tuple[Slider, ...],
-           points: Mapping[str, tuple[float, float]]) -> Drive:
+           points: Mapping[str, tuple[float, float]], cycle: Mapping[str, Any] | None = None) -> Drive:
     link = _link_ref(table.get("link"), "drive.link", links, "driving link")
     if link == FRAME:
         raise SceneError("the frame cannot be the driving link", key="drive.link")
@@ -509,6 +541,24 @@ def _drive(table: Mapping[str, Any], links: Mapping[str, Any], sliders: tuple[Sl
         kind, pos_key, speed_key, rate_key = DriveKind.ROTARY, "angle", "omega", "epsilon"
         pos_bound, pos_why = MAX_ANGLE_DEG, "° (about 2800 turns; beyond that a double cannot hold the angle exactly)"
         bounds = ((MAX_OMEGA, "rad/s"), (MAX_EPSILON, "rad/s²"))
+    if cycle:
+        if kind != DriveKind.ROTARY:
+            raise SceneError("positions = N divides one revolution of a crank; this drive is not a crank "
+                             "(a rotary drive with angle, omega): list the drive's values instead",
+                             key="drive.positions" if "positions" in cycle else "drive.start")
+        count = _positions(cycle)
+        if isinstance(table.get(pos_key), list):
+            raise SceneError("positions = N gives N equal steps from one first angle; give angle as one number "
+                             "(the first position), not a list, or leave positions out", key="drive.angle")
+        if cycle.get("start") == "extreme":
+            if pos_key in table:
+                raise SceneError('start = "extreme" finds the first position itself (the output link\'s '
+                                 'extreme); remove angle, or remove start to begin at angle', key="drive.angle")
+            table = dict(table, angle=0.0)      # placeholder steps: the kinematics finds the start
+        elif pos_key not in table:
+            raise SceneError('missing angle: the first of the positions (or start = "extreme")', key="drive.angle")
+        first = _number(table[pos_key], "drive.angle", bound=MAX_ANGLE_DEG, why="°")
+        table = dict(table, angle=[first + 360.0 * k / count for k in range(count)])
     if pos_key not in table:
         raise SceneError(f"missing {pos_key}", key=f"drive.{pos_key}")
     raw = table[pos_key]
@@ -532,6 +582,67 @@ def _drive(table: Mapping[str, Any], links: Mapping[str, Any], sliders: tuple[Sl
             raise SceneError(f"{x:g} {unit}{when} is too small to compute with: give 0 (at rest) or at least "
                              f"{MIN_RATE:g} {unit} in magnitude", key=f"drive.{k}")
     return Drive(link=link, kind=kind, values=values, speed=speed, rate=rate, along=along)
+
+
+def _positions(cycle: Mapping[str, Any]) -> int:
+    """The number of positions of ``[drive] positions`` (and a valid ``start``)."""
+    if "positions" not in cycle:
+        raise SceneError('start chooses the first of positions = N; add positions (e.g. 12) or remove start',
+                         key="drive.start")
+    n = cycle["positions"]
+    if isinstance(n, bool) or not isinstance(n, int):
+        raise SceneError(f"positions is a whole number of equal steps per revolution (e.g. 12), got "
+                         f"{_SHOW.repr(n)}", key="drive.positions")
+    if not MIN_CYCLE_POSITIONS <= n <= MAX_POSITIONS:
+        raise SceneError(f"positions = {n} is out of range: {MIN_CYCLE_POSITIONS} to {MAX_POSITIONS} equal steps per "
+                         "revolution (the graphical differentiation needs three chords; one a degree is the most)",
+                         key="drive.positions")
+    start = cycle.get("start", "angle")
+    if start not in CYCLE_STARTS:
+        raise SceneError(f"start is \"angle\" (the first position is angle) or \"extreme\" (the output link's "
+                         f"extreme position), got {_SHOW.repr(start)}", key="drive.start")
+    return n
+
+
+def _cycle(keys: Mapping[str, Any], drive: Drive, plans: Mapping[str, Any], draw: tuple[str, ...],
+           points: Mapping[str, Any], links: Mapping[str, tuple[str, ...]]) -> Cycle | None:
+    """The cycle of ``[drive] positions`` with ``[plans] output`` and ``trace``; None without
+    positions (then the cycle sheets and keys are refused)."""
+    if not keys:
+        wanted = [d for d in draw if d in CYCLE_SHEETS]
+        if wanted:
+            raise SceneError(f"draw {wanted[0]!r} shows the whole revolution; add [drive] positions = N (e.g. 12)",
+                             key="plans.draw")
+        for key in ("output", "trace"):
+            if key in plans:
+                raise SceneError(f"{key} belongs to the cycle sheets; add [drive] positions = N (e.g. 12)",
+                                 key=f"plans.{key}")
+        return None
+    n = _positions(keys)
+    if "velocities" in draw and n > MAX_VELOCITY_PLANS:
+        raise SceneError(f"the velocities sheet holds at most {MAX_VELOCITY_PLANS} plans, positions = {n}; "
+                         "lower positions or leave \"velocities\" out of draw", key="plans.draw")
+    if "diagrams" in draw and drive.speed == 0.0:
+        raise SceneError("the kinematic diagrams plot against time t = φ/ω1, which needs the crank to turn: give "
+                         "omega ≠ 0 or leave \"diagrams\" out of draw", key="drive.omega")
+    if "diagrams" in draw and drive.rate != 0.0:
+        raise SceneError("the kinematic diagrams take ω1 constant (t = φ/ω1): give epsilon = 0 or leave "
+                         "\"diagrams\" out of draw", key="drive.epsilon")
+    moving = [name for name in links if name != FRAME]
+    output = plans.get("output", moving[-1] if moving else "")
+    if output not in moving:
+        raise SceneError(f"output names the output link of the cycle, one of the moving links "
+                         f"{', '.join(moving)} (a string, e.g. \"{moving[-1]}\"); got {_SHOW.repr(output)}",
+                         key="plans.output")
+    trace = plans.get("trace", [])
+    if not isinstance(trace, list) or not all(isinstance(p, str) for p in trace):
+        raise SceneError(f'trace is a list of point names, e.g. ["C"]; got {_SHOW.repr(trace)}', key="plans.trace")
+    for p in trace:
+        if p not in points:
+            raise SceneError(f"unknown point {p!r} to trace; use a name from [points]", key="plans.trace")
+    if len(set(trace)) != len(trace):
+        raise SceneError("trace lists a point twice", key="plans.trace")
+    return Cycle(positions=n, start=keys.get("start", "angle"), output=output, trace=tuple(trace))
 
 
 def _rate(value: Any, key: str, bound: float, unit: str) -> float:

@@ -86,7 +86,12 @@ ATLAS = {
 
 
 def load(stem: str) -> dict:
-    return tomllib.loads((EXAMPLES_DIR / f"{stem}.toml").read_text(encoding="utf-8"))
+    """A scene as its file gives it, without the revolution of ``[drive] positions`` (the atlas
+    chooses its own positions, a list of angles)."""
+    data = tomllib.loads((EXAMPLES_DIR / f"{stem}.toml").read_text(encoding="utf-8"))
+    for key in ("positions", "start"):
+        data["drive"].pop(key, None)
+    return data
 
 
 def drive_key(data: dict) -> str:

@@ -66,7 +66,7 @@ def test_svg_contract(rendered):
 def test_measured_vectors_equal_json_values(rendered):
     """The absolute vectors measured on the plans equal |v|, |a| of the JSON report."""
     data = json.loads((rendered / "six_link_press.json").read_text())
-    for i, angle in enumerate((60, 200)):
+    for i, angle in enumerate((60, 90)):   # the first two of its 12 positions
         pos = data["positions"][i]
         for kind, key in (("velocity", "v"), ("acceleration", "a")):
             for m in check_svg(rendered / f"six_link_press-{kind}-{angle}.svg"):
