@@ -15,7 +15,6 @@ from .errors import OutputError, PlansError, one_line
 from .export import DEFAULT_DPI, FORMATS, MAX_DPI, MIN_DPI, convert, parse_dpi, parse_formats, require_cairo
 from .output import check_folder, write_files
 from .pipeline import Rendered, render_scene
-from .scene import DriveKind
 
 __all__ = ["main"]
 

@@ -280,14 +280,16 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
     formula = motion.structure.formula
     unit = "°" if motion.mechanism.drive.kind.angular else " m"
     for i in range(len(motion)):
-        sfx = _suffix(motion, i)
-        label = _position_label(motion, i)
         for g, s in motion.sines.items():
             if abs(s[i]) < WARN_SIN:
                 away = motion.singular_distance(g, i)
                 where = "" if away is None else f", about {away:.3g}{unit} from it"
                 warnings.append(f"{stem}: group {g} is near a singular position at {motion.values[i]:g}{unit} "
                                 f"(condition {s[i]:.2e}{where}); values are exact but sensitive")
+    own = range(len(motion)) if cycle is None else scene.cycle.at    # positions with sheets of their own
+    for i in own:
+        sfx = _suffix(motion, i)
+        label = _position_label(motion, i)
         if "scheme" in scene.draw:
             sch = scheme(motion, i, scales.mu_l, senses=scene.senses)
             files[f"{stem}-scheme{sfx}.svg"] = draw_scheme(sch, Heading(scene.title, "Kinematic scheme", label),

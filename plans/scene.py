@@ -159,12 +159,15 @@ class Cycle:
     ``start`` is ``"angle"`` (the first position is the drive's ``angle``) or ``"extreme"``
     (the first position is the one where the output link's displacement, or angle, is
     smallest: found by the kinematics). ``output`` names the output link (``[plans] output``,
-    by default the last moving link); ``trace`` the points whose trajectories are drawn."""
+    by default the last moving link); ``trace`` the points whose trajectories are drawn; ``at``
+    the position numbers (0 … N−1) drawn on sheets of their own (scheme, plans, centres) — all of
+    them when ``[plans] at`` is not given."""
 
     positions: int
     start: str = "angle"
     output: str = ""
     trace: tuple[str, ...] = ()
+    at: tuple[int, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -319,7 +322,7 @@ def _parse(data: Mapping[str, Any], file: str | None) -> Scene:
                    cycle=cycle_keys)
     lengths = _lengths(_table(data, "lengths"), points, links)
     plans_table = _table(data, "plans")
-    draw, senses = _draw({k: v for k, v in plans_table.items() if k not in ("output", "trace")})
+    draw, senses = _draw({k: v for k, v in plans_table.items() if k not in ("output", "trace", "at")})
     cycle = _cycle(cycle_keys, drive, plans_table, draw, points, links)
     scales = _scales(_table(data, "scales"))
     return Scene(title=title or "Mechanism", points=points, links=links, sliders=sliders, drive=drive,
@@ -613,7 +616,7 @@ def _cycle(keys: Mapping[str, Any], drive: Drive, plans: Mapping[str, Any], draw
         if wanted:
             raise SceneError(f"draw {wanted[0]!r} shows the whole revolution; add [drive] positions = N (e.g. 12)",
                              key="plans.draw")
-        for key in ("output", "trace"):
+        for key in ("output", "trace", "at"):
             if key in plans:
                 raise SceneError(f"{key} belongs to the cycle sheets; add [drive] positions = N (e.g. 12)",
                                  key=f"plans.{key}")
@@ -642,7 +645,13 @@ def _cycle(keys: Mapping[str, Any], drive: Drive, plans: Mapping[str, Any], draw
             raise SceneError(f"unknown point {p!r} to trace; use a name from [points]", key="plans.trace")
     if len(set(trace)) != len(trace):
         raise SceneError("trace lists a point twice", key="plans.trace")
-    return Cycle(positions=n, start=keys.get("start", "angle"), output=output, trace=tuple(trace))
+    at = plans.get("at", list(range(n)))
+    if not isinstance(at, list) or not all(isinstance(k, int) and not isinstance(k, bool) for k in at) \
+            or not all(0 <= k < n for k in at) or len(set(at)) != len(at):
+        raise SceneError(f"at lists the position numbers (0 to {n - 1}, each once) drawn on sheets of their own, "
+                         f"e.g. [0, 3]; got {_SHOW.repr(at)}", key="plans.at")
+    return Cycle(positions=n, start=keys.get("start", "angle"), output=output, trace=tuple(trace),
+                 at=tuple(sorted(at)))
 
 
 def _rate(value: Any, key: str, bound: float, unit: str) -> float:

@@ -60,3 +60,19 @@ def toml_text(data: dict) -> str:
     """A scene dict written as TOML that tomllib reads back equal: every top-level key on one
     line ``"key" = value`` (inline tables, arrays of inline tables for [[sliders]])."""
     return "".join(f"{_toml_string(k)} = {_toml_value(v)}\n" for k, v in data.items())
+
+
+def press_without_cycle(folder: Path) -> Path:
+    """A copy of the six-link press in ``folder`` as it was before its cycle sheets: drive
+    angles 60° and 200°, scheme and both plans, no ``positions`` (the handout tests count its
+    sheets and pages)."""
+    import tomllib
+
+    data = tomllib.loads(next(p for p in EXAMPLES if p.stem == "six_link_press").read_text(encoding="utf-8"))
+    for key in ("positions", "start"):
+        data["drive"].pop(key, None)
+    data["drive"]["angle"] = [60.0, 200.0]
+    data["plans"] = {"draw": ["scheme", "velocity", "acceleration"]}
+    path = Path(folder) / "six_link_press.toml"
+    path.write_text(toml_text(data), encoding="utf-8")
+    return path

@@ -245,7 +245,6 @@ class Reference:
             # Φ = d·n_g;  Φ̈ = d̈·n_g + 2 ḋ·ṅ_g + d·n̈_g,  ṅ_g = θ̇_g k×n_g,  n̈_g = θ̈_g k×n_g − θ̇_g² n_g
             quad = (-ws * ws * rs + wg * wg * rg) @ ng + 2.0 * wg * (dd @ (_J @ ng)) - wg * wg * (d @ ng)
             out += [0.0, -quad]
-        link = self.mech.drive.link
         if self.rotary:
             out.append(rate)
         else:    # as a prismatic pair's normal row, with u for n

@@ -30,9 +30,8 @@ import pytest
 from plans.cli import main
 from plans.export import sheet_size_mm
 
-from conftest import EXAMPLES
+from conftest import press_without_cycle
 
-PRESS = next(p for p in EXAMPLES if p.stem == "six_link_press")
 #: Longest wait for one answer or event from the browser, s.
 TIMEOUT = 60.0
 #: CSS pixels per millimetre (96 px an inch).
@@ -182,7 +181,8 @@ def test_index_in_headless_chromium(tmp_path):
         pytest.skip("Chromium not found (looked for $PLANS_CHROMIUM, chromium, chromium-browser, google-chrome): "
                     "install it, e.g. apt-get install -y chromium, to run the browser test")
     out = tmp_path / "handout"
-    assert main(["handout", str(PRESS), "--random", "2", "--seed", "11", "-o", str(out), "-q"]) == 0
+    press = press_without_cycle(tmp_path)        # two positions, three sheets: one page each
+    assert main(["handout", str(press), "--random", "2", "--seed", "11", "-o", str(out), "-q"]) == 0
     variants = sorted(p for p in out.iterdir() if p.is_dir())
     keys = {v.name: sorted(p for p in v.glob("*.svg") if not p.name.endswith("-assignment.svg")) for v in variants}
 

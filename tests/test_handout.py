@@ -9,6 +9,7 @@ import json
 import math
 import re
 import shutil
+import tempfile
 import tomllib
 from pathlib import Path
 
@@ -19,9 +20,12 @@ import plans.export
 from plans.cli import main
 from plans.handout import LENGTH_SPREAD, MARGIN_SIN, SPEED_SERIES, Progress, to_toml
 
-from conftest import EXAMPLES
+from conftest import EXAMPLES, press_without_cycle
 
-PRESS = next(p for p in EXAMPLES if p.stem == "six_link_press")
+CYCLE_PRESS = next(p for p in EXAMPLES if p.stem == "six_link_press")   # 12 positions and the cycle sheets
+#: The six-link press without its cycle (angles 60° and 200°, three sheets each), whose sheets
+#: and pages the tests count.
+PRESS = press_without_cycle(Path(tempfile.mkdtemp(prefix="plans-press-")))
 KEYS = {"angle": "angle", "omega": "omega", "epsilon": "epsilon"}
 
 
@@ -230,3 +234,16 @@ def test_progress_only_on_a_terminal():
 def test_to_toml_round_trips_every_example(path):
     data = tomllib.loads(path.read_text(encoding="utf-8"))
     assert tomllib.loads(to_toml(data)) == data
+
+
+def test_a_cycle_base_gives_keys_with_the_cycle_sheets(tmp_path):
+    """The bundled press (12 positions, sheets of their own at two of them, the cycle sheets):
+    every random variant's key holds the sheets a direct render of its scene file draws, and
+    plans check passes on them."""
+    out = _handout(tmp_path, str(CYCLE_PRESS), "--random", "1", "--seed", "3")
+    folder = out / "variant-01"
+    direct = plans.render(folder / "variant-01.toml")
+    names = {s.name for s in direct}
+    assert {"positions", "diagrams", "velocities"} <= names
+    assert {p.name for p in folder.glob("*.svg")} == {s.file for s in direct} | {"variant-01-assignment.svg"}
+    assert main(["check", *(str(folder / s.file) for s in direct)]) == 0
