@@ -308,3 +308,32 @@ def test_positions_need_a_crank_and_an_output_with_a_displacement():
     with pytest.raises(PlansError) as err:
         plans.render(parse_scene(data), stem="coupler")
     assert "plans.output" in str(err.value)
+
+
+@pytest.mark.parametrize("at, words", [([12], "0 to 11"), ([1, 1], "each once"), (["0"], "position numbers"),
+                                        ([True], "position numbers")])
+def test_bad_at_is_named(at, words):
+    data = tomllib.loads(PRESS.read_text(encoding="utf-8"))
+    data["plans"]["at"] = at
+    with pytest.raises(SceneError) as err:
+        parse_scene(data)
+    assert err.value.key == "plans.at" and words in str(err.value)
+
+
+def test_at_without_positions_is_refused():
+    data = tomllib.loads(PRESS.read_text(encoding="utf-8"))
+    data["drive"].pop("positions")
+    data["plans"] = {"draw": ["scheme"], "at": [0]}
+    with pytest.raises(SceneError) as err:
+        parse_scene(data)
+    assert err.value.key == "plans.at"
+
+
+def test_sheets_of_their_own_only_at_the_listed_positions():
+    data = tomllib.loads(PRESS.read_text(encoding="utf-8"))
+    data["plans"]["at"] = [1, 11]
+    sheets = plans.render(parse_scene(data), stem="press")
+    angles = [60.0 + 30.0 * k for k in (1, 11)]
+    assert sorted(s.name for s in sheets if s.name.startswith("velocity-")) == \
+        sorted(f"velocity-{a % 360:g}" for a in angles)
+    assert len(sheets.report["positions"]) == 12
