@@ -21,7 +21,7 @@ from ..structure import Structure
 from ..scene import FRAME, LINEAR_STEPS_PER_SIZE, STEP_DEG, DriveKind   # the walk's steps, bounded by the scene
 from ..structure import ComplexGroup
 from . import special
-from .compiled import CompiledGroup, walk as compiled_walk
+from .compiled import CompiledGroup, GroupRates, walk as compiled_walk
 from .generic import GroupEquations
 from .groups import SINGULAR_REASON, accelerations, candidates, conditioning, velocities
 from .tolerances import ASSEMBLY_RTOL, JUMP_RATIO, SINGULAR_SIN, WARN_SIN
@@ -52,23 +52,21 @@ def analyse(mech: Mechanism, structure: Structure, values: np.ndarray | None = N
     if order >= 1:
         _set_drive_rates(mech, states, values)
         sliding = {}
-        complex_ = {}     # per class III/IV group: its equations and scaled Jacobian (poses only: shared)
+        complex_ = {}     # per class III/IV group: its rate solves (one Jacobian, one factorisation)
         for g in structure.groups:
             if isinstance(g, ComplexGroup):
-                eq = GroupEquations(mech, g.links, g.pairs)
-                a = eq.scaled_jacobian(states)
-                complex_[g.name] = eq, a
-                sines[g.name] = special.condition(g, mech, states) if special.supports(g) else eq.condition(states, a)
+                rates = GroupRates(mech, g.links, g.pairs, states)
+                complex_[g.name] = rates
+                sines[g.name] = special.condition(g, mech, states) if special.supports(g) else rates.condition()
                 _refuse_singular(mech, g, sines[g.name], values)
-                eq.velocities(states, a)
+                rates.velocities(states)
                 continue
             sliding[g.name], sines[g.name] = velocities(g, mech, states, pre.get(g.name))
             _refuse_singular(mech, g, sines[g.name], values)
         if order >= 2:
             for g in structure.groups:
                 if isinstance(g, ComplexGroup):
-                    eq, a = complex_[g.name]
-                    eq.accelerations(states, a)
+                    complex_[g.name].accelerations(states)
                 else:
                     accelerations(g, mech, states, sliding[g.name])
     return Motion(mechanism=mech, structure=structure, values=values, order=order, links=states, sines=sines)
