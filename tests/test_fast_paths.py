@@ -1,6 +1,8 @@
 """The fast paths of the kinematic solver agree with the straightforward computations they
 replace: a class III/IV group's compiled rate solves (:class:`plans.kinematics.compiled.GroupRates`)
-with the generic pair equations (:class:`plans.kinematics.generic.GroupEquations`), to rounding."""
+with the generic pair equations (:class:`plans.kinematics.generic.GroupEquations`), to rounding;
+a large class II request solved in blocks (``solve._direct_motion``) with the same request
+solved at once, to the last bit."""
 
 from __future__ import annotations
 
@@ -8,7 +10,8 @@ import numpy as np
 import pytest
 
 from conftest import EXAMPLES
-from plans.kinematics import analyse, special
+from plans.errors import PlansError
+from plans.kinematics import analyse, solve, special
 from plans.kinematics.compiled import GroupRates
 from plans.kinematics.generic import GroupEquations
 from plans.kinematics.groups import accelerations, velocities
@@ -95,3 +98,75 @@ def test_compiled_rates_near_a_limit_position():
             assert _relative(getattr(s, field), getattr(states[name], field)) <= RATES_RTOL, (name, field)
     rates = GroupRates(mech, g.links, g.pairs, motion.links)
     assert np.max(np.abs(rates.condition() / figures[g.name] - 1.0)) <= RATES_RTOL
+
+
+# --- a large class II request solved in blocks (solve._direct_motion) -----------------------
+
+def _class_ii_examples() -> list:
+    out = []
+    for path in EXAMPLES:
+        mech = build_mechanism(read_scene(path))
+        st = analyse_structure(mech)
+        if not any(isinstance(g, ComplexGroup) for g in st.groups):
+            out.append(pytest.param(mech, st, id=path.stem))
+    return out
+
+
+def _outcome(fn):
+    try:
+        return fn(), None
+    except PlansError as e:
+        return None, (type(e), str(e))
+
+
+@pytest.mark.parametrize("mech, st", _class_ii_examples())
+def test_blocked_request_equals_unblocked(mech, st, monkeypatch):
+    """Blocks of DIRECT_BLOCK values give every pose, rate, cos θ, sin θ and sin of the whole
+    request at once to the last bit (or the same refusal)."""
+    s = mech.drive.sketch_value
+    span = np.linspace(-200.0, 500.0, 2 * solve.DIRECT_BLOCK + 37) if mech.drive.kind == "rotary" \
+        else np.linspace(-0.3, 0.3, 2 * solve.DIRECT_BLOCK + 37) * mech.size
+    values = s + span
+    blocked, blocked_err = _outcome(lambda: analyse(mech, st, values, order=2))
+    with monkeypatch.context() as m:
+        m.setattr(solve, "DIRECT_BLOCK", 10 ** 9)
+        whole, whole_err = _outcome(lambda: analyse(mech, st, values, order=2))
+    assert blocked_err == whole_err
+    if whole is None:
+        return
+    assert list(blocked.links) == list(whole.links) and blocked.sines.keys() == whole.sines.keys()
+    for name, a in blocked.links.items():
+        b = whole.links[name]
+        for field in ("theta", "origin", "omega", "v", "epsilon", "a"):
+            assert np.array_equal(getattr(a, field), getattr(b, field)), (name, field)
+        ca, cb = a.__dict__.get("_cos_sin"), b.__dict__.get("_cos_sin")
+        assert (ca is None) == (cb is None)
+        if ca is not None:
+            assert all(np.array_equal(x, y) for x, y in zip(ca, cb))
+    for g, sin in blocked.sines.items():
+        assert np.array_equal(sin, whole.sines[g])
+
+
+def test_blocked_path_is_used_and_falls_back(monkeypatch):
+    """The crank-slider's 100 000 positions go through the blocks; a block that fails the
+    direct path's checks hands the whole request to the walk, which reports as before."""
+    mech = build_mechanism(read_scene(next(p for p in EXAMPLES if p.stem == "crank_slider_central")))
+    st = analyse_structure(mech)
+    calls = []
+    block = solve._direct_block
+
+    def spy(*a):
+        calls.append(len(a[3]))
+        return block(*a)
+
+    monkeypatch.setattr(solve, "_direct_block", spy)
+    values = np.linspace(0.0, 360.0, 100_000, endpoint=False)
+    motion = analyse(mech, st, values, order=1)
+    assert calls[0] == solve.DIRECT_BLOCK and sum(calls) == len(values) and motion.order == 1
+    assert set(motion.sines) == {g.name for g in st.groups}
+    assert all(motion.links[link].epsilon is None for g in st.groups for link in g.links)
+    # a block refused (as if a value were singular): the ordinary path solves the request
+    monkeypatch.setattr(solve, "_direct_block", lambda *a: None)
+    again = analyse(mech, st, values, order=1)
+    for name, s in again.links.items():
+        np.testing.assert_allclose(s.omega, motion.links[name].omega, rtol=1e-12, atol=1e-12)
