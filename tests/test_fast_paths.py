@@ -170,3 +170,44 @@ def test_blocked_path_is_used_and_falls_back(monkeypatch):
     again = analyse(mech, st, values, order=1)
     for name, s in again.links.items():
         np.testing.assert_allclose(s.omega, motion.links[name].omega, rtol=1e-12, atol=1e-12)
+
+
+# --- the compiled group's shortcuts ---------------------------------------------------------
+
+@pytest.mark.parametrize("mech, st", _complex_examples())
+def test_compiled_difference_and_trigonometry(mech, st):
+    """Φ(q, i) − Φ(q, j) without evaluation (revolute pairs only) equals the difference of two
+    evaluations to rounding; the cos θ, sin θ route by batch size changes nothing beyond one ulp."""
+    from plans.kinematics import compiled
+    values = np.asarray(mech.drive.values, dtype=float)
+    values = values[0] + np.linspace(-4.0, 4.0, 3 * compiled.TRIG_BATCH)
+    motion = analyse(mech, st, values, order=0)
+    for g in st.groups:
+        if not isinstance(g, ComplexGroup):
+            continue
+        rates = GroupRates(mech, g.links, g.pairs, motion.links)
+        group, q = rates.group, rates.q
+        i, j = np.arange(1, len(values)), np.arange(len(values) - 1)
+        both = group.difference(q[i], i, j)
+        direct = group.evaluate(q[i], i, jacobian=False) - group.evaluate(q[i], j, jacobian=False)
+        assert np.max(np.abs(both - direct)) <= 1e-15 * mech.size
+        th = q[:, 2::3]
+        c, s = compiled._cos_sin(th)
+        assert np.max(np.abs(c - np.cos(th))) <= 2.3e-16 and np.max(np.abs(s - np.sin(th))) <= 2.3e-16
+
+
+def test_compiled_constants_are_per_mechanism():
+    """The cached constants of a group belong to one mechanism: another mechanism with the same
+    link and pair names but other dimensions gets its own."""
+    from test_complex import _folding_triad
+    from plans.kinematics import compiled
+    from plans.scene import parse_scene
+    data = _folding_triad()
+    first = build_mechanism(parse_scene(data))
+    data["points"]["D"] = [0.41, 0.11]
+    second = build_mechanism(parse_scene(data))
+    (g1,), (g2,) = analyse_structure(first).groups, analyse_structure(second).groups
+    c1 = compiled._constants(first, g1.links, g1.pairs)
+    c2 = compiled._constants(second, g2.links, g2.pairs)
+    assert c1 is compiled._constants(first, g1.links, g1.pairs)
+    assert not np.array_equal(c1.ms, c2.ms)

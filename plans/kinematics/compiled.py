@@ -29,6 +29,8 @@ root the step-by-step walk reaches (the same branch, to rounding).
 
 from __future__ import annotations
 
+import weakref
+from dataclasses import dataclass
 from typing import Mapping
 
 import numpy as np
@@ -36,15 +38,99 @@ import numpy as np
 from ..model import Mechanism
 from .generic import TOLERANCE, GroupEquations, _with_rates
 from .tolerances import COARSE_RTOL, MAX_ITER
-from .state import LinkState, _spin
+from .state import LinkState, _spin, cos_sin
 
 __all__ = ["CompiledGroup", "GroupRates", "walk"]
 
 States = Mapping[str, LinkState]
 
 
+#: From this many angles on, cos θ and sin θ come from :func:`~plans.kinematics.state.cos_sin`
+#: (numpy's tan is vectorised: 3× faster, within one ulp of np.cos, np.sin); below it numpy's
+#: per-call overhead dominates and np.cos, np.sin are faster.
+TRIG_BATCH = 64
+
+
+def _cos_sin(th: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """cos θ, sin θ of an array of angles, by the faster route for its size."""
+    if th.size >= TRIG_BATCH:
+        return cos_sin(th)
+    return np.cos(th), np.sin(th)
+
+
 #: The constant factors of :meth:`CompiledGroup._reduced`, by the group's equations (a few groups).
 _REDUCED: dict = {}
+
+
+@dataclass(frozen=True)
+class _Constants:
+    """What a group's compiled equations hold that depends on the mechanism only: Φ = known +
+    T·q + Mc·cos θ + Ms·sin θ for the revolute pairs (T = ``template``; ``t``, ``mc``, ``ms``
+    transposed for q @ …; ``jc``, ``js``: Mc, Ms ÷ size, the angle columns of A), the known
+    links' pins (row, link, local point, sign) and the prismatic pairs (row, pair)."""
+
+    n: int
+    size: float
+    index: dict[str, int]
+    template: np.ndarray
+    t: np.ndarray
+    mc: np.ndarray
+    ms: np.ndarray
+    jc: np.ndarray
+    js: np.ndarray
+    cols: list[int]
+    known_pins: tuple
+    prismatic: tuple
+
+
+#: The constants of a few groups, by (id of the mechanism, links, pairs), with a weak reference
+#: to the mechanism (an id can be reused once it is gone): analysing a mechanism again does
+#: not build them again.
+_CONSTANTS: dict = {}
+
+
+def _constants(mech: Mechanism, links: tuple[str, ...], pairs: tuple) -> _Constants:
+    """The group's mechanism-only data (see :class:`_Constants`), built once per mechanism."""
+    key = (id(mech), links, pairs)
+    hit = _CONSTANTS.get(key)
+    if hit is not None and hit[0]() is mech:
+        return hit[1]
+    k = len(links)
+    n = 3 * k
+    if 2 * len(pairs) != n:
+        raise ValueError("an Assur group has 3 equations per link: 2 per pair")
+    size = float(mech.size)
+    index = {name: i for i, name in enumerate(links)}
+    loc = mech.links
+    template = np.zeros((n, n))
+    # revolute pairs: Φ = known + T·q + Mc·cos θ + Ms·sin θ (rows: x and y of each pair)
+    mc = np.zeros((n, k))
+    ms = np.zeros((n, k))
+    known_pins, prismatic = [], []
+    for k_pair, pair in enumerate(pairs):
+        r = 2 * k_pair
+        if pair.kind != "R":
+            prismatic.append((r, pair.prismatic))
+            continue
+        for link, sign in ((pair.a, 1.0), (pair.b, -1.0)):
+            local = loc[link].local[pair.point]
+            if link not in index:
+                known_pins.append((r, link, local, sign))
+                continue
+            L = index[link]
+            template[r, 3 * L] += sign
+            template[r + 1, 3 * L + 1] += sign
+            mc[r, L] += sign * local[0]
+            ms[r, L] -= sign * local[1]
+            mc[r + 1, L] += sign * local[1]
+            ms[r + 1, L] += sign * local[0]
+    out = _Constants(n, size, index, template, np.ascontiguousarray(template.T), np.ascontiguousarray(mc.T),
+                     np.ascontiguousarray(ms.T), mc / size, ms / size,     # ∂Φ/∂θ = −sin θ·Mc + cos θ·Ms, θ scaled
+                     [c for c in range(n) if c % 3 != 2], tuple(known_pins), tuple(prismatic))
+    if len(_CONSTANTS) >= 64:
+        _CONSTANTS.clear()
+    _CONSTANTS[key] = weakref.ref(mech), out
+    return out
 
 
 class CompiledGroup:
@@ -53,65 +139,38 @@ class CompiledGroup:
     def __init__(self, mech: Mechanism, links: tuple[str, ...], pairs: tuple, known: States):
         self.links = tuple(links)
         self.pairs = tuple(pairs)
-        k = len(self.links)
-        self.n = n = 3 * k
-        if 2 * len(self.pairs) != n:
-            raise ValueError("an Assur group has 3 equations per link: 2 per pair")
-        self.size = size = float(mech.size)
-        index = {name: i for i, name in enumerate(self.links)}
-        self.index = index
+        const = _constants(mech, self.links, self.pairs)
+        self.n, self.size, self.index = const.n, const.size, const.index
+        self.template, self._t, self._mc, self._ms, self._jc, self._js = \
+            const.template, const.t, const.mc, const.ms, const.jc, const.js
+        self.cols = const.cols
+        self.known_pins = const.known_pins      # (row, link, local point, sign) of the known links' pins
         n_pos = len(next(iter(known.values())).theta)
         self.n_pos = n_pos
-        loc = mech.links
-        template = np.zeros((n, n))
-        known_rows = np.zeros((n_pos, n))
-        # revolute pairs: Φ = known + T·q + Mc·cos θ + Ms·sin θ (rows: x and y of each pair)
-        mc = np.zeros((n, k))
-        ms = np.zeros((n, k))
+        known_rows = np.zeros((n_pos, self.n))
+        for r, link, local, sign in const.known_pins:
+            known_rows[:, r:r + 2] += sign * known[link].point(local)
+        self.known_rows = known_rows
         self.prismatic = []
-        for k_pair, pair in enumerate(self.pairs):
-            r = 2 * k_pair
-            if pair.kind == "R":
-                for link, sign in ((pair.a, 1.0), (pair.b, -1.0)):
-                    local = loc[link].local[pair.point]
-                    if link in index:
-                        L = index[link]
-                        template[r, 3 * L] += sign
-                        template[r + 1, 3 * L + 1] += sign
-                        mc[r, L] += sign * local[0]
-                        ms[r, L] -= sign * local[1]
-                        mc[r + 1, L] += sign * local[1]
-                        ms[r + 1, L] += sign * local[0]
-                    else:
-                        known_rows[:, r:r + 2] += sign * known[link].point(local)
-                continue
-            p = pair.prismatic
+        for r, p in const.prismatic:
             entry = {"row": r}
             for role, link in (("slider", p.slider), ("guide", p.guide)):
                 anchor = p.anchor[link]
-                if link in index:
-                    entry[role] = (index[link], anchor)
+                if link in self.index:
+                    entry[role] = (self.index[link], anchor)
                 else:
                     st = known[link]
                     entry[role] = (None, (st.theta, st.point(anchor), st.origin,
                                           st.direction(p.normal) if role == "guide" else None))
             entry["normal"] = p.normal
             self.prismatic.append(entry)
-        self.template = template
-        self.known_rows = known_rows
-        self._t = np.ascontiguousarray(template.T)
-        self._mc = np.ascontiguousarray(mc.T)
-        self._ms = np.ascontiguousarray(ms.T)
-        self._jc = mc / size          # ∂Φ/∂θ = (−sin θ·Mc + cos θ·Ms), θ scaled by size
-        self._js = ms / size
-        self.cols = [c for c in range(n) if c % 3 != 2]
 
     # -- equations -------------------------------------------------------------------------
     def evaluate(self, q: np.ndarray, idx: np.ndarray, jacobian: bool = True):
         """Scaled residual Φ (M, n) and, with ``jacobian``, scaled A (M, n, n) at poses ``q``
         (M, n) with the known links at grid positions ``idx`` (M,)."""
         th = q[:, 2::3]
-        c, s = np.cos(th), np.sin(th)
+        c, s = _cos_sin(th)
         phi = self.known_rows[idx] + q @ self._t + c @ self._mc + s @ self._ms
         if jacobian:
             a = np.empty((len(idx), self.n, self.n))
@@ -120,6 +179,14 @@ class CompiledGroup:
         for e in self.prismatic:
             self._prismatic(e, q, c, s, idx, phi, a if jacobian else None)
         return (phi, a) if jacobian else phi
+
+    def difference(self, q: np.ndarray, idx: np.ndarray, other: np.ndarray) -> np.ndarray:
+        """Φ(q) with the known links at grid positions ``idx`` minus Φ(q) with them at ``other``
+        (M, n): for revolute pairs only the known links' points differ (no evaluation)."""
+        if not self.prismatic:
+            return self.known_rows[idx] - self.known_rows[other]
+        both = self.evaluate(np.concatenate([q, q]), np.concatenate([idx, other]), jacobian=False)
+        return both[:len(q)] - both[len(q):]
 
     def _link_frame(self, L: int, q, c, s, local):
         """θ, world point of ``local``, origin and the rotation's (cos, sin) of group link L."""
@@ -283,7 +350,7 @@ class CompiledGroup:
             # (once), det A = c0·det(Q₂ᵀ·B), B the k angle columns (Q₂ᵀB: k×k per position)
             c0_sign, c0_log, t_norm2, p_s, p_c = reduced
             th = q[:, 2::3]
-            c, s = np.cos(th), np.sin(th)
+            c, s = _cos_sin(th)
             det = np.linalg.det(c[:, None, :] * p_s - s[:, None, :] * p_c)
             sign = c0_sign * np.sign(det)
             b = c[:, None, :] * self._js - s[:, None, :] * self._jc
@@ -304,7 +371,7 @@ class CompiledGroup:
         _, _, _, p_s, p_c = self._reduced_
         q1t, r1_inv_t, q1_js, q1_jc = self._blocks
         th = q[:, 2::3]
-        c, s = np.cos(th), np.sin(th)
+        c, s = _cos_sin(th)
         c_inv = np.linalg.inv(c[:, None, :] * p_s - s[:, None, :] * p_c)    # (M, k, k)
         g = c[:, None, :] * q1_js - s[:, None, :] * q1_jc                      # Q₁ᵀB (M, 2k, k)
         cols = self.cols
@@ -426,9 +493,9 @@ def walk(group: CompiledGroup, sweep: np.ndarray, x: np.ndarray, q0: np.ndarray,
         it = 0
         for it in range(COARSE_ITER + 1):
             phi, a = group.evaluate(q, idx)
-            r = np.max(np.abs(phi), axis=1)
+            r = np.abs(phi).max(axis=1)
             ok = r <= limit
-            if ok.all() or it == COARSE_ITER or not np.isfinite(r).all():
+            if it == COARSE_ITER or ok.all() or not np.isfinite(r).all():
                 return q, ok, it, a
             try:
                 dx = np.linalg.solve(a, -phi[..., None])[..., 0]
@@ -440,8 +507,7 @@ def walk(group: CompiledGroup, sweep: np.ndarray, x: np.ndarray, q0: np.ndarray,
 
     def tangents(j: np.ndarray, q: np.ndarray, a: np.ndarray) -> np.ndarray | None:
         lo, hi = _neighbours(x, j, step)
-        both = group.evaluate(np.concatenate([q, q]), np.concatenate([sweep[hi], sweep[lo]]), jacobian=False)
-        dphi = (both[:len(j)] - both[len(j):]) / (x[hi] - x[lo])[:, None]
+        dphi = group.difference(q, sweep[hi], sweep[lo]) / (x[hi] - x[lo])[:, None]
         try:
             t = np.linalg.solve(a, -dphi[..., None])[..., 0]
         except np.linalg.LinAlgError:
@@ -460,7 +526,7 @@ def walk(group: CompiledGroup, sweep: np.ndarray, x: np.ndarray, q0: np.ndarray,
     stride = FIRST_STRIDE
     j = 0
     while j < m - 1:
-        ks = np.unique(np.minimum(j + stride * np.array([1, 2, 3]), m - 1))
+        ks = np.array(sorted({min(j + stride * i, m - 1) for i in (1, 2, 3)}))
         hk = (x[ks] - x[j])[:, None]
         if len(nodes) > 1:     # third order: the Hermite cubic of the last two nodes, extended
             guess = _hermite(qs[-2], ts[-2], qs[-1], ts[-1], x[nodes[-2]], x[j], x[ks])
@@ -531,7 +597,7 @@ class GroupRates:
         known = {name: s for name, s in states.items() if name not in self.links}
         self.group = group = CompiledGroup(mech, self.links, self.pairs, known)
         self.size = group.size
-        self.col = {name: 3 * i for i, name in enumerate(self.links)}
+        self.col = {name: 3 * L for name, L in group.index.items()}
         n_pos = group.n_pos
         self.q = np.empty((n_pos, group.n))
         for name, c in self.col.items():
@@ -541,12 +607,7 @@ class GroupRates:
         self.idx = np.arange(n_pos)
         self._a: np.ndarray | None = None
         self._solver = None
-        # the known links' ends of revolute pairs: (row, link, local point, sign)
         self.revolute_only = not group.prismatic
-        loc = mech.links
-        self._known_pins = [(2 * k, link, loc[link].local[pair.point], sign)
-                            for k, pair in enumerate(self.pairs) if pair.kind == "R"
-                            for link, sign in ((pair.a, 1.0), (pair.b, -1.0)) if link not in group.index]
 
     def jacobian(self) -> np.ndarray:
         """The scaled Jacobian A (N, n, n) at the poses (computed once)."""
@@ -564,7 +625,7 @@ class GroupRates:
         else:     # det A = c0·det(Q₂ᵀB) (see CompiledGroup.crossing_figure): its sign, from k×k blocks
             c0_sign, _, _, p_s, p_c = reduced
             th = self.q[:, 2::3]
-            c, s = np.cos(th), np.sin(th)
+            c, s = _cos_sin(th)
             sign = c0_sign * np.sign(np.linalg.det(c[:, None, :] * p_s - s[:, None, :] * p_c))
         return sign * sv[:, -1] / sv[:, 0]
 
@@ -585,7 +646,7 @@ class GroupRates:
         """Σ ±(velocity, order 1, or acceleration, order 2) of the known links' points at the
         revolute pairs, in the pairs' rows (N, n); prismatic rows 0."""
         out = np.zeros((len(self.idx), self.group.n))
-        for r, link, local, sign in self._known_pins:
+        for r, link, local, sign in self.group.known_pins:
             st = states[link]
             m = _spin_known(st, st.direction(local), order)
             if sign > 0:
@@ -614,7 +675,7 @@ class GroupRates:
             w = np.column_stack([states[name].omega for name in self.links])
             w2 = w * w
             th = self.q[:, 2::3]
-            c, s = np.cos(th), np.sin(th)
+            c, s = _cos_sin(th)
             # the group's links' centripetal terms: −ω²·R(θ)·local at every pin, with signs
             rhs -= (w2 * c) @ g._mc + (w2 * s) @ g._ms
         else:
