@@ -90,6 +90,8 @@ class _Constants:
     cols: list[int]
     known_pins: tuple
     prismatic: tuple
+    w: np.ndarray          # [T; Mc; Ms] transposed: [q, cos θ, sin θ] @ w = T·q + Mc·cos θ + Ms·sin θ
+    k: np.ndarray          # [cos θ, sin θ] @ k = the angle columns of A, row by row (n·k values)
 
 
 #: The constants of a few groups, by (id of the mechanism, links, pairs), with a weak reference
@@ -133,9 +135,15 @@ def _constants(mech: Mechanism, links: tuple[str, ...], pairs: tuple) -> _Consta
             ms[r, L] -= sign * local[1]
             mc[r + 1, L] += sign * local[1]
             ms[r + 1, L] += sign * local[0]
+    jc, js = mc / size, ms / size          # ∂Φ/∂θ = −sin θ·Mc + cos θ·Ms, θ scaled
+    kmat = np.zeros((2 * k, n, k))
+    for L in range(k):
+        kmat[L, :, L] = js[:, L]
+        kmat[k + L, :, L] = -jc[:, L]
     out = _Constants(n, size, index, template, np.ascontiguousarray(template.T), np.ascontiguousarray(mc.T),
-                     np.ascontiguousarray(ms.T), mc / size, ms / size,     # ∂Φ/∂θ = −sin θ·Mc + cos θ·Ms, θ scaled
-                     [c for c in range(n) if c % 3 != 2], tuple(known_pins), tuple(prismatic))
+                     np.ascontiguousarray(ms.T), jc, js, [c for c in range(n) if c % 3 != 2], tuple(known_pins),
+                     tuple(prismatic), np.ascontiguousarray(np.concatenate([template.T, mc.T, ms.T])),
+                     kmat.reshape(2 * k, n * k))
     if len(_CONSTANTS) >= 64:
         _CONSTANTS.clear()
     _CONSTANTS[key] = weakref.ref(mech), out
@@ -154,6 +162,7 @@ class CompiledGroup:
             const.template, const.t, const.mc, const.ms, const.jc, const.js
         self.cols = const.cols
         self.known_pins = const.known_pins      # (row, link, local point, sign) of the known links' pins
+        self._w, self._k = const.w, const.k
         n_pos = len(next(iter(known.values())).theta)
         self.n_pos = n_pos
         known_rows = np.zeros((n_pos, self.n))
@@ -180,11 +189,14 @@ class CompiledGroup:
         (M, n) with the known links at grid positions ``idx`` (M,)."""
         th = q[:, 2::3]
         c, s = _cos_sin(th)
-        phi = self.known_rows[idx] + q @ self._t + c @ self._mc + s @ self._ms
+        qcs = np.concatenate((q, c, s), axis=1)
+        phi = qcs @ self._w                    # T·q + Mc·cos θ + Ms·sin θ in one product
+        phi += self.known_rows[idx]
         if jacobian:
-            a = np.empty((len(idx), self.n, self.n))
+            m, n = len(idx), self.n
+            a = np.empty((m, n, n))
             a[:] = self.template
-            a[:, :, 2::3] = c[:, None, :] * self._js - s[:, None, :] * self._jc
+            a[:, :, 2::3] = (qcs[:, n:] @ self._k).reshape(m, n, n // 3)   # cos θ·Js − sin θ·Jc
         for e in self.prismatic:
             self._prismatic(e, q, c, s, idx, phi, a if jacobian else None)
         return (phi, a) if jacobian else phi
