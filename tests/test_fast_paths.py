@@ -211,3 +211,16 @@ def test_compiled_constants_are_per_mechanism():
     c2 = compiled._constants(second, g2.links, g2.pairs)
     assert c1 is compiled._constants(first, g1.links, g1.pairs)
     assert not np.array_equal(c1.ms, c2.ms)
+
+
+def test_compiled_rates_keep_a_link_at_rest_at_rest():
+    """triad_at_rest at 0°: links 3, 4 and 5 stand still; the compiled rates say so exactly (as the
+    generic solve does), so the cross-check against the special points, relative to each link's
+    own values, passes."""
+    mech = build_mechanism(read_scene(next(p for p in EXAMPLES if p.stem == "triad_at_rest")))
+    st = analyse_structure(mech)
+    motion = analyse(mech, st, np.array([0.0]), order=2)
+    for link in ("3", "4", "5"):
+        assert motion.links[link].omega[0] == 0.0 and not motion.links[link].v.any()
+    for triad in special.triads(motion).values():
+        assert special.disagreement(motion, triad) <= special.CROSS_CHECK_RTOL

@@ -612,14 +612,17 @@ def walk(group: CompiledGroup, sweep: np.ndarray, x: np.ndarray, q0: np.ndarray,
 
 class GroupRates:
     """A class III/IV group's velocity and acceleration solves at its solved poses, sharing
-    one scaled Jacobian A (the compiled group's, :meth:`CompiledGroup.evaluate`) and, for a
-    group of revolute pairs only, one factorisation of it (:meth:`CompiledGroup._block_solver`)
-    and right-hand sides assembled from the known links' point motions without the generic
-    per-pair terms. A group with a prismatic pair takes its right-hand sides from
-    :class:`~plans.kinematics.generic.GroupEquations` and solves with ``numpy.linalg.solve``.
+    one scaled Jacobian A (the compiled group's, :meth:`CompiledGroup.evaluate`), which also
+    gives the condition figure; for a group of revolute pairs only, right-hand sides assembled
+    from the known links' pin motions without the generic per-pair terms (a group with a
+    prismatic pair takes them from :class:`~plans.kinematics.generic.GroupEquations`).
 
-    The same equations as ``GroupEquations.velocities``/``accelerations``: the results
-    agree to rounding (the tests compare both)."""
+    The same equations as ``GroupEquations.velocities``/``accelerations``, solved as they
+    are (``numpy.linalg.solve``, LU with pivoting): the results agree to rounding (the tests
+    compare both), and a link at rest comes out at rest exactly, as there. (The block
+    solver of the walk, :meth:`CompiledGroup._block_solver`, leaves ~1e-17 of rounding on
+    such a link, which the cross-check against the special points, relative to each link's
+    own largest value, would report.)"""
 
     def __init__(self, mech: Mechanism, links: tuple[str, ...], pairs: tuple, states: States):
         self.mech = mech
@@ -637,7 +640,6 @@ class GroupRates:
             self.q[:, c + 2] = s.theta
         self.idx = np.arange(n_pos)
         self._a: np.ndarray | None = None
-        self._solver = None
         self.revolute_only = not group.prismatic
 
     def jacobian(self) -> np.ndarray:
@@ -662,14 +664,7 @@ class GroupRates:
 
     def _solve(self, rhs: np.ndarray) -> np.ndarray:
         """The group's rates x (N, n) from A·x = −rhs (rhs scaled as A's rows; x unscaled)."""
-        if self._solver is None:
-            if self.revolute_only and self.group._reduced() is not None:
-                self._solver = self.group._block_solver(self.q)
-            else:
-                a = self.jacobian()
-                self._solver = lambda phi: np.linalg.solve(a, phi[..., None])[..., 0]
-        x = self._solver(rhs)
-        np.negative(x, out=x)
+        x = np.linalg.solve(self.jacobian(), -rhs[..., None])[..., 0]
         x[:, 2::3] /= self.size
         return x
 

@@ -63,7 +63,7 @@ def analyse(mech: Mechanism, structure: Structure, values: np.ndarray | None = N
     if order >= 1:
         _set_drive_rates(mech, states, values)
         sliding = {}
-        complex_ = {}     # per class III/IV group: its rate solves (one Jacobian, one factorisation)
+        complex_ = {}     # per class III/IV group: its rate solves (one Jacobian for both)
         for g in structure.groups:
             if isinstance(g, ComplexGroup):
                 rates = GroupRates(mech, g.links, g.pairs, states)
