@@ -281,8 +281,10 @@ def _direct(mech: Mechanism, structure: Structure, values: np.ndarray, pre: dict
 def _steps_before(grid: np.ndarray, sweeps: list[np.ndarray], start: float, values: np.ndarray) -> np.ndarray:
     """The index in ``grid`` of the walk's step before every value, on the sketch's side."""
     up, down = grid[sweeps[0]], grid[sweeps[1]][::-1]
-    before = np.empty(len(values), dtype=int)
     high = values >= start
+    if high.all():     # every value on the way up (a turn from the sketch): no masks needed
+        return sweeps[0][np.searchsorted(up, values, side="right") - 1]
+    before = np.empty(len(values), dtype=int)
     before[high] = sweeps[0][np.searchsorted(up, values[high], side="right") - 1]
     before[~high] = sweeps[1][::-1][np.searchsorted(down, values[~high], side="left")]
     return before
