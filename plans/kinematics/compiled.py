@@ -25,6 +25,9 @@ Newton through every 1° step in Python:
 When any of these fails the caller falls back to the step-by-step walk, which then reports
 the failure (group, angle, reason) exactly as before; when they pass, every position is the
 root the step-by-step walk reaches (the same branch, to rounding).
+
+:class:`GroupRates` solves a group's velocities and accelerations at the requested positions
+with the compiled Jacobian (which also gives the condition figure).
 """
 
 from __future__ import annotations
