@@ -224,3 +224,12 @@ def test_compiled_rates_keep_a_link_at_rest_at_rest():
         assert motion.links[link].omega[0] == 0.0 and not motion.links[link].v.any()
     for triad in special.triads(motion).values():
         assert special.disagreement(motion, triad) <= special.CROSS_CHECK_RTOL
+
+
+def test_blocked_matrix_product():
+    """Products of many positions are taken in row blocks (one BLAS thread each): the same numbers."""
+    from plans.kinematics import compiled
+    rng = np.random.default_rng(3)
+    a, w = rng.standard_normal((3 * compiled.PRODUCT_ROWS + 7, 20)), rng.standard_normal((20, 12))
+    np.testing.assert_allclose(compiled._product(a, w), a @ w, rtol=1e-14, atol=1e-14)
+    assert compiled._product(a[:5], w).shape == (5, 12)

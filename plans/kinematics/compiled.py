@@ -61,6 +61,24 @@ def _cos_sin(th: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return np.cos(th), np.sin(th)
 
 
+#: Matrix products of many positions are taken in blocks of this many rows: a block's product
+#: (≤ 512 × 48 × 8 multiply-adds) stays below the size from which OpenBLAS splits a product over
+#: threads, which for these skinny products is no gain and, on a busy machine, waits milliseconds
+#: for a second thread (measured: a class IV group at 3600 positions 3× slower).
+PRODUCT_ROWS = 512
+
+
+def _product(a: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """a @ w for a (M, K), w (K, N), in blocks of PRODUCT_ROWS rows."""
+    m = len(a)
+    if m <= PRODUCT_ROWS:
+        return a @ w
+    out = np.empty((m, w.shape[1]))
+    for lo in range(0, m, PRODUCT_ROWS):
+        np.matmul(a[lo:lo + PRODUCT_ROWS], w, out=out[lo:lo + PRODUCT_ROWS])
+    return out
+
+
 def _max_abs(m: np.ndarray) -> np.ndarray:
     """max |m[i, j]| over j for every row i of m (M, n): the same numbers as
     np.max(np.abs(m), axis=1), reduced column by column (numpy reduces a short contiguous
@@ -193,13 +211,13 @@ class CompiledGroup:
         th = q[:, 2::3]
         c, s = _cos_sin(th)
         qcs = np.concatenate((q, c, s), axis=1)
-        phi = qcs @ self._w                    # T·q + Mc·cos θ + Ms·sin θ in one product
+        phi = _product(qcs, self._w)           # T·q + Mc·cos θ + Ms·sin θ in one product
         phi += self.known_rows[idx]
         if jacobian:
             m, n = len(idx), self.n
             a = np.empty((m, n, n))
             a[:] = self.template
-            a[:, :, 2::3] = (qcs[:, n:] @ self._k).reshape(m, n, n // 3)   # cos θ·Js − sin θ·Jc
+            a[:, :, 2::3] = _product(qcs[:, n:], self._k).reshape(m, n, n // 3)   # cos θ·Js − sin θ·Jc
         for e in self.prismatic:
             self._prismatic(e, q, c, s, idx, phi, a if jacobian else None)
         return (phi, a) if jacobian else phi
@@ -412,9 +430,9 @@ class CompiledGroup:
         k2 = len(cols)
 
         def solve(phi: np.ndarray) -> np.ndarray:
-            z = phi @ q1t
+            z = _product(phi, q1t)
             x_b = np.einsum("mij,mj->mi", c_inv, z[:, k2:])
-            x_t = (z[:, :k2] - np.einsum("mij,mj->mi", g, x_b)) @ r1_inv_t
+            x_t = _product(z[:, :k2] - np.einsum("mij,mj->mi", g, x_b), r1_inv_t)
             out = np.empty_like(phi)
             out[:, cols] = x_t
             out[:, 2::3] = x_b
@@ -706,7 +724,7 @@ class GroupRates:
             th = self.q[:, 2::3]
             c, s = _cos_sin(th)
             # the group's links' centripetal terms: −ω²·R(θ)·local at every pin, with signs
-            rhs -= (w2 * c) @ g._mc + (w2 * s) @ g._ms
+            rhs -= _product(w2 * c, g._mc) + _product(w2 * s, g._ms)
         else:
             rhs = self._generic_terms(states, 2)
         x = self._solve(rhs)
