@@ -233,3 +233,19 @@ def test_blocked_matrix_product():
     a, w = rng.standard_normal((3 * compiled.PRODUCT_ROWS + 7, 20)), rng.standard_normal((20, 12))
     np.testing.assert_allclose(compiled._product(a, w), a @ w, rtol=1e-14, atol=1e-14)
     assert compiled._product(a[:5], w).shape == (5, 12)
+
+
+def test_four_by_four_determinant():
+    """Laplace's expansion gives numpy's determinant to rounding, with its sign, down to
+    matrices a 1e-9 step from singular."""
+    from plans.kinematics import compiled
+    rng = np.random.default_rng(5)
+    m = rng.standard_normal((2000, 4, 4))
+    u, s, vt = np.linalg.svd(m)
+    s[:, -1] = s[:, 0] * 10.0 ** rng.uniform(-9.0, 0.0, len(m))
+    m = (u * s[:, None, :]) @ vt
+    exact, fast = np.linalg.det(m), compiled._det(m)
+    assert np.array_equal(np.sign(exact), np.sign(fast))
+    scale = np.prod(np.linalg.norm(m, axis=2), axis=1)       # Hadamard's bound on |det|
+    assert np.max(np.abs(fast - exact) / scale) <= 1e-14
+    assert np.allclose(compiled._det(m[:, :3, :3]), np.linalg.det(m[:, :3, :3]))
