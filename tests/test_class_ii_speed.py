@@ -33,6 +33,7 @@ CLASS_II = [p.stem for p in sorted(EXAMPLES.glob("*.toml"))
 def _full(monkeypatch, mech, structure, values, order=2):
     with monkeypatch.context() as m:
         m.setattr(solve, "_direct", lambda *a: None)
+        m.setattr(solve, "_direct_motion", lambda *a: None)     # its blocked form, for large requests
         return analyse(mech, structure, values, order=order)
 
 

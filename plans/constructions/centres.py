@@ -20,6 +20,7 @@ import numpy as np
 
 from ..kinematics import Motion
 from ..scene import FRAME
+from .plans import MIN_DRAWN_MM
 from .scales import fitting_scale
 from .scheme import Scheme, scheme
 
@@ -136,8 +137,9 @@ def centres_sheet(motion: Motion, i: int) -> CentresSheet:
         special_marks.append((label.split(":")[0], _xy(s / mu)))
         base = _base_of(motion, label)
         centre = near.get(base)
-        if centre is not None and np.linalg.norm(v) > 0.0:
-            lines.append(_segment([s / mu, centre / mu]))   # S–P_base ⊥ v_S
+        # S–P_base ⊥ v_S, unless S is the centre itself (v_S = 0 up to rounding)
+        if centre is not None and np.linalg.norm(s - centre) / mu > MIN_DRAWN_MM:
+            lines.append(_segment([s / mu, centre / mu]))
     return CentresSheet(sch, mu, tuple(marks), tuple(rays), tuple(lines), tuple(special_marks))
 
 

@@ -269,6 +269,13 @@ def _cramer(U1: np.ndarray, U2: np.ndarray, rhs: np.ndarray, det: np.ndarray | N
     return cross(rhs, U2) / safe, cross(U1, rhs) / safe, sin
 
 
+def _sin(U1: np.ndarray, U2: np.ndarray) -> np.ndarray:
+    """sin of the angle between U1 and U2 (0 where either is zero), as :func:`_cramer` gives it."""
+    det = cross(U1, U2)
+    scale = np.sqrt((U1[:, 0] * U1[:, 0] + U1[:, 1] * U1[:, 1]) * (U2[:, 0] * U2[:, 0] + U2[:, 1] * U2[:, 1]))
+    return det / scale if scale.all() else np.where(scale > 0.0, det / np.where(scale > 0.0, scale, 1.0), 0.0)
+
+
 def _cramer_known(sin: np.ndarray):
     """:func:`_cramer` returning the ``sin`` already known instead of computing it again."""
     def solve(U1: np.ndarray, U2: np.ndarray, rhs: np.ndarray):
@@ -314,7 +321,7 @@ def conditioning(g: Group, mech: Mechanism, states: States, keep: dict | None = 
     the same poses: see ``pre`` there)."""
     geo = _geometry(g, mech, states)
     U1, U2 = _directions(g, geo)
-    sin = _cramer(U1, U2, np.zeros_like(U1))[2]
+    sin = _sin(U1, U2)
     if keep is not None:
         keep.update(geo=geo, U1=U1, U2=U2, sin=sin)
     return sin

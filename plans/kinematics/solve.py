@@ -11,7 +11,7 @@ Velocities and accelerations are then solved at the requested positions only.
 from __future__ import annotations
 
 import math
-from dataclasses import fields
+from dataclasses import dataclass, fields
 
 import numpy as np
 
@@ -21,7 +21,7 @@ from ..structure import Structure
 from ..scene import FRAME, LINEAR_STEPS_PER_SIZE, STEP_DEG, DriveKind   # the walk's steps, bounded by the scene
 from ..structure import ComplexGroup, DrivenGroup
 from . import special
-from .compiled import CompiledGroup, walk as compiled_walk
+from .compiled import CompiledGroup, GroupRates, walk as compiled_walk
 from .drives import DrivenEquations
 from .generic import GroupEquations
 from .groups import SINGULAR_REASON, accelerations, candidates, conditioning, velocities
@@ -29,6 +29,13 @@ from .tolerances import ASSEMBLY_RTOL, JUMP_RATIO, SINGULAR_SIN, WARN_SIN
 from .state import LinkState, Motion, rotate
 
 __all__ = ["analyse", "drive_states", "singular_reason", "group_condition", "SINGULAR_SIN", "WARN_SIN", "STEP_DEG", "JUMP_RATIO"]
+
+#: A class II mechanism's request of more drive values than this is solved in blocks of this
+#: many (:func:`_direct_motion`): a block's temporaries (32–64 KiB each) stay in the cache and
+#: are reused from the heap, where arrays of 100 000 positions are mapped and faulted in afresh
+#: (about 12 500 page faults a call, as costly as the arithmetic). Smaller blocks pay the
+#: per-call overhead of every numpy operation more often (512: twice as slow).
+DIRECT_BLOCK = 4096
 
 
 
@@ -50,40 +57,43 @@ def analyse(mech: Mechanism, structure: Structure, values: np.ndarray | None = N
     """Positions (order 0), velocities (1) and accelerations (2) at the drive ``values``
     (degrees for a crank, metres for a slider; the scene's values by default)."""
     values = np.asarray(mech.drive.values if values is None else values, dtype=float)
+    if values.size > DIRECT_BLOCK:      # a large request of a class II mechanism: solved in blocks
+        motion = _direct_motion(mech, structure, values, order)
+        if motion is not None:
+            return motion
     pre: dict[str, dict] = {}      # per class II group, its geometry at the values when already solved
     states = _reach(mech, structure, values, pre)
     sines: dict[str, np.ndarray] = {}
     if order >= 1:
         _set_drive_rates(mech, states, values)
         sliding = {}
-        complex_ = {}     # per class III/IV group: its equations and scaled Jacobian (poses only: shared)
+        complex_ = {}     # per class III/IV group: its rate solves (one Jacobian for both)
+        driven = None     # a drive inside the chain: its equations and scaled Jacobian
         if structure.driven is not None:
             g = structure.driven
             eq = DrivenEquations(mech, g, values)
             a = eq.scaled_jacobian(states)
-            complex_[g.name] = eq, a
+            driven = eq, a
             sines[g.name] = eq.condition(states, a)
             _refuse_singular(mech, g, sines[g.name], values)
             eq.velocities(states, a)
         for g in structure.groups:
             if isinstance(g, ComplexGroup):
-                eq = GroupEquations(mech, g.links, g.pairs)
-                a = eq.scaled_jacobian(states)
-                complex_[g.name] = eq, a
-                sines[g.name] = special.condition(g, mech, states) if special.supports(g) else eq.condition(states, a)
+                rates = GroupRates(mech, g.links, g.pairs, states)
+                complex_[g.name] = rates
+                sines[g.name] = special.condition(g, mech, states) if special.supports(g) else rates.condition()
                 _refuse_singular(mech, g, sines[g.name], values)
-                eq.velocities(states, a)
+                rates.velocities(states)
                 continue
             sliding[g.name], sines[g.name] = velocities(g, mech, states, pre.get(g.name))
             _refuse_singular(mech, g, sines[g.name], values)
         if order >= 2:
-            if structure.driven is not None:
-                eq, a = complex_[structure.driven.name]
+            if driven is not None:
+                eq, a = driven
                 eq.accelerations(states, a)
             for g in structure.groups:
                 if isinstance(g, ComplexGroup):
-                    eq, a = complex_[g.name]
-                    eq.accelerations(states, a)
+                    complex_[g.name].accelerations(states)
                 else:
                     accelerations(g, mech, states, sliding[g.name])
     return Motion(mechanism=mech, structure=structure, values=values, order=order, links=states, sines=sines)
@@ -257,12 +267,7 @@ def _direct(mech: Mechanism, structure: Structure, values: np.ndarray, pre: dict
     states = drive_states(mech, np.concatenate([grid, values]))
     tol = ASSEMBLY_RTOL * mech.size
     first = np.array([0])            # the grid's start
-    # the walk's step before every value, on the sketch's side
-    up, down = grid[sweeps[0]], grid[sweeps[1]][::-1]
-    before = np.empty(len(values), dtype=int)
-    high = values >= start
-    before[high] = sweeps[0][np.searchsorted(up, values[high], side="right") - 1]
-    before[~high] = sweeps[1][::-1][np.searchsorted(down, values[~high], side="left")]
+    before = _steps_before(grid, sweeps, start, values)
     kept: dict[str, dict] = {}
     sin_at: dict[str, np.ndarray] = {}
     for g in structure.groups:
@@ -290,6 +295,172 @@ def _direct(mech: Mechanism, structure: Structure, values: np.ndarray, pre: dict
             pre[name] = {"geo": {key: v[at] for key, v in keep["geo"].items()},
                          "U1": keep["U1"][at], "U2": keep["U2"][at], "sin": sin_at[name]}
     return {name: s.take(at) for name, s in states.items()}
+
+
+def _steps_before(grid: np.ndarray, sweeps: list[np.ndarray], start: float, values: np.ndarray) -> np.ndarray:
+    """The index in ``grid`` of the walk's step before every value, on the sketch's side."""
+    up, down = grid[sweeps[0]], grid[sweeps[1]][::-1]
+    high = values >= start
+    if high.all():     # every value on the way up (a turn from the sketch): no masks needed
+        return sweeps[0][np.searchsorted(up, values, side="right") - 1]
+    before = np.empty(len(values), dtype=int)
+    before[high] = sweeps[0][np.searchsorted(up, values[high], side="right") - 1]
+    before[~high] = sweeps[1][::-1][np.searchsorted(down, values[~high], side="left")]
+    return before
+
+
+@dataclass(frozen=True)
+class _Plan:
+    """What the direct path decides once for all the values of a blocked request
+    (:func:`_direct_motion`): the walk's steps from the start
+    to the extreme values (``grid``, its ``sweeps``, the ``start``), each class II group's
+    assembly branch there and its sin along those steps, and the assembly tolerance (m)."""
+
+    grid: np.ndarray
+    sweeps: list[np.ndarray]
+    start: float
+    tol: float
+    branch: dict[str, int]
+    walk_sin: dict[str, np.ndarray]
+
+
+def _direct_plan(mech: Mechanism, structure: Structure, values: np.ndarray) -> _Plan | None:
+    """The direct path's walk from the start to the extreme ``values``: every branch of each
+    group solved at the walk's steps, the one the walk takes at its start kept, and assembly
+    and singular crossings checked along the steps as the walk checks them. None when a check
+    fails or a group is of class III/IV (then the full walk decides)."""
+    if values.ndim != 1 or not values.size or not np.all(np.isfinite(values)) \
+            or structure.driven is not None or any(isinstance(g, ComplexGroup) for g in structure.groups):
+        return None
+    start = _start(mech, values)
+    ends = np.array([values.min(), values.max()])
+    grid, sweeps, _ = _grid(mech, ends, start)
+    states = drive_states(mech, grid)
+    tol = ASSEMBLY_RTOL * mech.size
+    first = np.array([0])            # the grid's start
+    branch: dict[str, int] = {}
+    walk_sin: dict[str, np.ndarray] = {}
+    for g in structure.groups:
+        # every branch (one call: cheaper than solving the start alone first), the one the
+        # walk takes at its start kept
+        options = candidates(g, mech, states, tol)
+        b = int(_branch(mech, g.links, options, [first])[0])
+        option = options[b]
+        if not option.valid.all():
+            return None
+        states[g.m], states[g.n] = option.m, option.n
+        sin = conditioning(g, mech, states)
+        try:
+            _check_crossing(mech, g, sin, grid, sweeps, ends)
+        except AssemblyError:
+            return None
+        branch[g.name], walk_sin[g.name] = b, sin
+    return _Plan(grid, sweeps, start, tol, branch, walk_sin)
+
+
+def _direct_block(mech: Mechanism, structure: Structure, plan: _Plan, values: np.ndarray
+                  ) -> tuple[dict[str, LinkState], dict[str, dict]] | None:
+    """Poses at ``values`` (all of them, or a block of them) on the branches of ``plan``, and
+    per group what :func:`groups.conditioning` kept there (``pre`` of groups.velocities); None
+    when a value does not assemble, is near a singular position or has not the sign of sin of
+    the walk's step before it. Element by element the same arithmetic as at all values at
+    once: a block's poses are those of the whole request."""
+    before = _steps_before(plan.grid, plan.sweeps, plan.start, values)
+    states = drive_states(mech, values)
+    kept: dict[str, dict] = {}
+    for g in structure.groups:
+        (option,) = candidates(g, mech, states, plan.tol, plan.branch[g.name])
+        if not option.valid.all():
+            return None
+        states[g.m], states[g.n] = option.m, option.n
+        keep: dict = {}
+        sin = conditioning(g, mech, states, keep)
+        if not np.all((np.abs(sin) >= SINGULAR_SIN) & (np.sign(sin) == np.sign(plan.walk_sin[g.name][before]))):
+            return None
+        kept[g.name] = {"geo": keep["geo"], "U1": keep["U1"], "U2": keep["U2"], "sin": sin}
+    return states, kept
+
+
+def _direct_motion(mech: Mechanism, structure: Structure, values: np.ndarray, order: int) -> Motion | None:
+    """:func:`analyse` of a class II mechanism at more than DIRECT_BLOCK values: the direct
+    path's walk checked once (:func:`_direct_plan`), then positions, velocities and
+    accelerations solved block by block into arrays of the full size (rows of one buffer,
+    :func:`_allocate`), so that every temporary is a block's (see DIRECT_BLOCK). The same
+    results as at all values at once, to the last bit; None where :func:`_direct` would
+    give None (the full walk then decides and reports)."""
+    plan = _direct_plan(mech, structure, values)
+    if plan is None:
+        return None
+    n = len(values)
+    out: dict[str, dict[str, np.ndarray | None]] = {}
+    sines: dict[str, np.ndarray] = {g.name: np.empty(n) for g in structure.groups} if order >= 1 else {}
+    for lo in range(0, n, DIRECT_BLOCK):
+        part = values[lo:lo + DIRECT_BLOCK]
+        solved = _direct_block(mech, structure, plan, part)
+        if solved is None:
+            return None
+        states, kept = solved
+        if order >= 1:
+            _set_drive_rates(mech, states, part)
+            sliding = {}
+            for g in structure.groups:
+                sliding[g.name], sin = velocities(g, mech, states, kept[g.name])
+                sines[g.name][lo:lo + len(part)] = sin    # |sin| ≥ SINGULAR_SIN: checked in _direct_block
+            if order >= 2:
+                for g in structure.groups:
+                    accelerations(g, mech, states, sliding[g.name])
+        _store(out, states, lo, n)
+    links = {}
+    for name, arrays in out.items():
+        cs = arrays.pop("_cos_sin")
+        links[name] = LinkState(**arrays)
+        if cs is not None:
+            links[name].seeded(*cs)
+    return Motion(mechanism=mech, structure=structure, values=values, order=order, links=links, sines=sines)
+
+
+def _store(out: dict[str, dict], states: dict[str, LinkState], lo: int, n: int) -> None:
+    """Copy a block's states (positions lo, lo + 1, …) into ``out``'s full-size arrays (made
+    at the first block, as rows of one buffer), cos θ and sin θ too when known."""
+    if not out:
+        _allocate(out, states, n)
+    for name, s in states.items():
+        dst = out[name]
+        for key in _FIELDS:
+            v = getattr(s, key)
+            if v is not None:
+                dst[key][lo:lo + len(v)] = v
+        cs = s.__dict__.get("_cos_sin")
+        if cs is not None and dst["_cos_sin"] is not None:
+            for d, src in zip(dst["_cos_sin"], cs):
+                d[lo:lo + len(src)] = src
+
+
+_FIELDS = tuple(f.name for f in fields(LinkState))
+
+
+def _allocate(out: dict[str, dict], states: dict[str, LinkState], n: int) -> None:
+    """Full-size arrays for every field of the block's ``states`` (None stays None): rows of
+    one (rows, n) buffer, a vector field two rows (stored by columns, as a block's are). One
+    large allocation instead of some forty of 0.8 MB: numpy backs it with huge pages, and
+    the page faults of a call fall from ~8 600 to ~900."""
+    layout = []
+    for name, s in states.items():
+        for key in _FIELDS:
+            v = getattr(s, key)
+            if v is not None:
+                layout.append((name, key, v.shape[1] if v.ndim == 2 else 0))
+        if "_cos_sin" in s.__dict__:
+            layout += [(name, "_cos", 0), (name, "_sin", 0)]
+    buf = np.empty((sum(max(w, 1) for *_, w in layout), n))
+    row = 0
+    for name, s in states.items():
+        out[name] = dict.fromkeys(_FIELDS)
+    for name, key, w in layout:
+        out[name][key] = buf[row:row + w].T if w else buf[row]
+        row += max(w, 1)
+    for name, d in out.items():
+        d["_cos_sin"] = (d.pop("_cos"), d.pop("_sin")) if "_cos" in d else None
 
 
 def _positions(mech: Mechanism, structure: Structure, values: np.ndarray, start: float | None = None,
