@@ -41,6 +41,20 @@ mechanism at rest, or a construction not drawn at that position, as its subtitle
 other file without a tagged vector — a plan whose tags were removed, or an SVG not written by
 plans — fails ("no tagged vectors: not a plan written by plans"). A centres sheet's measured
 segments ``r:X/Pj`` run from the centre Pj to the point X and are checked like vectors.
+**Kinetostatics.** A force plan (``data-plan="force"``, μ = μF in N/mm) is measured like
+any plan (length × μF = the force in N, direction, ends named alike by their vertex labels
+coincide — so a whole reaction ends where its two components do, and a reaction between the
+group's links joins the vertices it must); besides, its sides (``data-role="side"``) must
+sum to zero: drawn, within ``n · 2√2 · precision`` mm for n sides, and as recorded (value ×
+direction), within :data:`FORCE_CLOSURE_REL` of Σ values. Zhukovsky's lever
+(``data-plan="lever"``, μ = μF, the pole's paper position in ``data-pole``): every force is
+measured as a vector; its arm about the pole — the distance from the pole to the line
+through its drawn tail in its recorded direction — must equal its ``data-h`` within
+``2√2 · precision`` (two rounded points); each drawn arm (``data-construction="arm"``,
+``data-arm`` = the force) must start at the pole, end on that line and be that long; and the
+moments ± F·h with the drawn arms must sum to zero, Σ M_p = 0, within Σ F · 2√2 · precision
+(+ 1e-9 relative). Each of these is a :class:`Check`; a failed one is also a problem.
+
 A group with ``data-plan="bound"`` holds vectors drawn at their points of application on a
 scheme (Koshel's V_S1, V_S2 drawn from S1, S2 in the plan's scale): each is measured for
 length and direction, but its ends are no plan images, so it adds no closure equation.
@@ -61,7 +75,7 @@ from .constructions.plans import Plan
 from .drawing.style import Style
 from .errors import DrawingError
 
-__all__ = ["Measurement", "Closure", "SvgReport", "inspect_svg", "check_svg", "check_plan", "GEOMETRY_TOL_MM",
+__all__ = ["Measurement", "Closure", "Check", "SvgReport", "inspect_svg", "check_svg", "check_plan", "GEOMETRY_TOL_MM",
            "WRITER_PRECISION"]
 
 _SVG = "{http://www.w3.org/2000/svg}"
@@ -71,6 +85,13 @@ GEOMETRY_TOL_MM = 1e-6
 WRITER_PRECISION = Style().precision
 #: Relative slack on lengths (SI) and on the angular tolerance (rad) for floating-point noise.
 _REL = 1e-9
+#: A force polygon's recorded sides (value × direction) must sum to zero within this fraction of Σ values.
+FORCE_CLOSURE_REL = 1e-6
+#: Kinds of kinetostatic plan groups.
+FORCE, LEVER = "force", "lever"
+#: A lever force whose recorded arm is at least this long must have its arm drawn, mm (the
+#: writer's promise, plans.drawing.forces.MIN_ARM_MM, restated so the checker does not read the writer).
+MIN_ARM_MM = 0.5
 #: Plans whose vectors are measured; a group with another ``data-plan`` is a plan too unless "scheme".
 SCHEME = "scheme"
 #: Vectors drawn at their points of application (measured, never closed: see the module docstring).
@@ -137,6 +158,22 @@ class Closure:
         return self.gap_mm <= self.tolerance_mm
 
 
+@dataclass(frozen=True)
+class Check:
+    """One kinetostatic check of a force plan or lever: ``what`` (``Σ sides`` …, ``arm of F:bal``,
+    ``Σ M_p``), the deviation found and its tolerance, in ``unit`` (mm, N, N·mm)."""
+
+    plan: str
+    what: str
+    deviation: float
+    tolerance: float
+    unit: str
+
+    @property
+    def ok(self) -> bool:
+        return math.isfinite(self.deviation) and self.deviation <= self.tolerance
+
+
 @dataclass
 class SvgReport:
     """Everything ``plans check`` found in one file. ``kind``: ``plan`` (tagged vectors),
@@ -151,11 +188,12 @@ class SvgReport:
     closures: list[Closure] = field(default_factory=list)
     problems: list[str] = field(default_factory=list)
     equations: dict[str, int] = field(default_factory=dict)
+    checks: list[Check] = field(default_factory=list)
 
     @property
     def ok(self) -> bool:
         return (self.kind != "none" and not self.problems and all(m.ok for m in self.measurements)
-                and all(c.ok for c in self.closures))
+                and all(c.ok for c in self.closures) and all(c.ok for c in self.checks))
 
 
 def _number(text: str | None) -> float | None:
@@ -362,6 +400,90 @@ def _check_group(report: SvgReport, g: ET.Element, lines: list[ET.Element]) -> N
             ends.append((f"{q} {which}", pt, absolute, name, label))
     if plan != BOUND:
         _closures(report, gid, ends, r + _REL)
+    if plan == FORCE:
+        _force_closure(report, gid, lines, r)
+    elif plan == LEVER:
+        _lever(report, g, gid, lines, r)
+
+
+def _add(report: SvgReport, check: Check) -> None:
+    report.checks.append(check)
+    if not check.ok:
+        report.problems.append(f"plan {check.plan}: {check.what}: {check.deviation:.3g} {check.unit} "
+                               f"(tolerance {check.tolerance:.2g} {check.unit})")
+
+
+def _line_data(line: ET.Element):
+    """(x1, y1, x2, y2), value, direction (rad) of a tagged line, or None when unreadable."""
+    xy = [_number(line.get(k)) for k in ("x1", "y1", "x2", "y2")]
+    value, theta = _number(line.get("data-value")), _number(line.get("data-direction"))
+    if None in xy or value is None or theta is None or not all(math.isfinite(c) for c in xy + [value, theta]):
+        return None
+    return xy, value, math.radians(theta)
+
+
+def _force_closure(report: SvgReport, gid: str, lines: list[ET.Element], r: float) -> None:
+    """A force polygon's sides sum to zero, drawn and as recorded."""
+    sides = [d for d in (_line_data(l) for l in lines if l.get("data-role") == "side") if d is not None]
+    if len([l for l in lines if l.get("data-role") == "side"]) != len(sides) or not sides:
+        report.problems.append(f"plan {gid}: a force plan without readable sides (data-role=\"side\")")
+        return
+    dx = sum(x2 - x1 for (x1, _, x2, _), _, _ in sides)
+    dy = sum(y2 - y1 for (_, y1, _, y2), _, _ in sides)
+    _add(report, Check(gid, f"Σ of the {len(sides)} drawn sides", math.hypot(dx, dy), len(sides) * r + _REL, "mm"))
+    ex = sum(v * math.cos(t) for _, v, t in sides)
+    ey = sum(v * math.sin(t) for _, v, t in sides)
+    total = sum(v for _, v, _ in sides)
+    _add(report, Check(gid, "Σ of the recorded forces", math.hypot(ex, ey), FORCE_CLOSURE_REL * total + 1e-12, "N"))
+    report.equations[gid] = report.equations.get(gid, 0) + 1
+
+
+def _lever(report: SvgReport, g: ET.Element, gid: str, lines: list[ET.Element], r: float) -> None:
+    """Arms and Σ M_p = 0 of Zhukovsky's lever (see the module docstring)."""
+    pole = [_number(c) for c in (g.get("data-pole") or "").split(",")]
+    if len(pole) != 2 or None in pole or not all(math.isfinite(c) for c in pole):
+        report.problems.append(f"plan {gid}: the lever's data-pole {g.get('data-pole')!r} is not a paper point x,y")
+        return
+    px, py = pole
+    arms = {}
+    for a in g.iter(f"{_SVG}line"):
+        if a.get("data-construction") == "arm":
+            arms.setdefault(a.get("data-arm") or "", []).append(a)
+    total = bound = scale = 0.0
+    for line in lines:
+        q, data = line.get("data-quantity"), _line_data(line)
+        if data is None:
+            continue                    # already a failed measurement
+        (x1, y1, x2, y2), value, t = data
+        ux, uy = math.cos(t), math.sin(t)
+        cross = (x1 - px) * uy - (y1 - py) * ux        # paper frame, y down: clockwise on screen positive
+        h = abs(cross)
+        recorded = _number(line.get("data-h"))
+        if recorded is None or not math.isfinite(recorded) or recorded < 0:
+            report.problems.append(f"plan {gid}: {q}: data-h {line.get('data-h')!r} is not an arm in mm ≥ 0")
+            continue
+        _add(report, Check(gid, f"arm of {q} (drawn vs data-h)", abs(h - recorded), r + _REL * recorded, "mm"))
+        drawn = arms.pop(q, [])
+        if recorded >= MIN_ARM_MM and not drawn:
+            report.problems.append(f"plan {gid}: {q}: its arm of {recorded:g} mm is not drawn")
+        for a in drawn:
+            ax = [_number(a.get(k)) for k in ("x1", "y1", "x2", "y2")]
+            if None in ax:
+                report.problems.append(f"plan {gid}: the arm of {q} has no coordinates")
+                continue
+            start = math.hypot(ax[0] - px, ax[1] - py)
+            off = abs((ax[2] - x1) * uy - (ax[3] - y1) * ux)
+            length = math.hypot(ax[2] - ax[0], ax[3] - ax[1])
+            dev = max(start, off, abs(length - h))
+            _add(report, Check(gid, f"arm of {q} (from the pole, to its line, its length)", dev, r + _REL * h, "mm"))
+        moment = -math.copysign(value * h, cross)        # counter-clockwise positive, as on paper y up
+        total += moment
+        bound += value * r
+        scale += abs(moment)
+    for q in arms:
+        report.problems.append(f"plan {gid}: an arm of {q!r}, which is no force of the lever")
+    _add(report, Check(gid, "Σ M_p with the drawn arms", abs(total), bound + _REL * scale + 1e-12, "N·mm"))
+    report.equations[gid] = report.equations.get(gid, 0) + 1
 
 
 def _closures(report: SvgReport, gid: str, ends: list, tol: float) -> None:

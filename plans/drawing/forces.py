@@ -1,0 +1,458 @@
+"""Kinetostatics sheets: the groups' force plans and Zhukovsky's lever, in SVG.
+
+**Force plans** (:func:`draw_force_plans`): each group's polygon in a panel of its own, with
+its own μF (as a textbook draws them), captioned with the group, μF and the vector equation it
+closes, and a table below of every force of the group — zero ones included, which are not
+drawn — with its value and drawn length. Panels are set side by side, then in rows, on the
+smallest standard sheet that holds them (A4 or A3); plans that do not fit one A3 sheet go on
+the next sheet. Known forces are blue, reaction components red, whole reactions black,
+reactions between the group's own links black and dashed; the directions of the normal
+components are thin dashed lines.
+
+**Lever** (:func:`draw_lever`): the velocity plan turned 90° clockwise (thin), the forces at
+the turned images as arrows in μF (a moment's couple dashed, the balancing element red), the
+arms h_i from the pole as thin lines to the foot of each perpendicular (the line of action
+drawn on, dashed, when the foot is off the arrow), and beside it the written equation
+Σ M_p = 0 term by term and the balancing result.
+
+What ``plans check`` reads (besides the tags of :mod:`.svg`): a force plan's ``<g>`` has
+``data-plan="force"``, ``data-mu`` = μF (N/mm), ``data-group``; each vector ``data-role``
+(``side``, ``total``, ``internal``) and ``data-from``/``data-to`` the vertices it joins. The
+lever's ``<g>`` has ``data-plan="lever"``, ``data-mu`` = μF, ``data-mu-v`` = μV,
+``data-sense`` and ``data-pole`` (the pole's paper x, y as written); each force line
+``data-h`` (its exact arm, mm) and ``data-moment`` (N·mm, counter-clockwise positive on the
+lever, i.e. clockwise positive in the SVG frame's y-down terms), ``data-from`` the image it
+is applied at; each arm ``<line data-construction="arm" data-arm=QUANTITY>`` runs from the
+pole to the foot.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Sequence
+
+import numpy as np
+
+from ..constructions.forces import ForcePlan, Lever, LeverForce, component_of
+from .canvas import Canvas, fmt
+from .marks import NO_HEAD_MM, arrow as _arrow, bounds, markup as _markup
+from .sheet import FORMATS, TitleBlock, choose_format, new_sheet
+from .style import Style
+from .svg import Heading, _tag
+from .text import runs, width, wrap
+
+__all__ = ["draw_force_plans", "draw_lever", "symbol", "PANEL_GAP_MM", "TABLE_TEXT_MM", "TABLE_LEAD_MM"]
+
+#: Space between panels, mm.
+PANEL_GAP_MM = 8.0
+#: Height of the tables' and captions' text, and their line spacing, mm.
+TABLE_TEXT_MM = 2.8
+TABLE_LEAD_MM = 4.4
+#: Columns of a force table: symbol, value (N), drawn length (mm); their widths, mm.
+TABLE_COLUMNS_MM = (24.0, 24.0, 20.0)
+#: Width of the lever's written computation, mm.
+LEVER_TEXT_MM = 118.0
+#: Arms shorter than this are not drawn (their force's line passes through the pole), mm.
+MIN_ARM_MM = 0.5
+#: Side of the right-angle mark at the foot of an arm, mm.
+RIGHT_ANGLE_MM = 1.8
+_KIND_COLOUR = {"gravity": "vector", "inertia": "vector", "external": "vector", "balance": "vector",
+                "reaction": "component", "reaction_n": "component", "reaction_t": "component"}
+
+
+def _sub(text: str) -> str:
+    return "{" + text + "}"
+
+
+def symbol(quantity: str) -> str:
+    """The printed name of a force tag, in label markup: ``R:1-2`` → R₁₂, ``R:1-2:n`` → R₁₂,ₙ,
+    ``R:1-2:t`` → R₁₂,τ, ``G:3`` → G₃, ``F:in:2`` → F_in,2, ``F:ext:B`` → F_B, ``F:bal`` →
+    F_bal, ``M:2`` → M₂, a couple's force ``F:M:2:a`` → F′₂ (at a)."""
+    parts = quantity.split(":")
+    base, comp = component_of(quantity)
+    if base.startswith("R:") and "-" in base:
+        i, _, j = base[2:].partition("-")
+        ij = f"{i}{j}" if len(i) == 1 and len(j) == 1 else f"{i},{j}"
+        return f"R_{_sub(ij + ({'n': ',n', 't': ',τ'}[comp] if comp else ''))}"
+    if len(parts) == 2 and parts[0] in ("G", "M", "F"):
+        return f"{parts[0]}_{_sub(parts[1])}"
+    if len(parts) == 3 and parts[:2] == ["F", "in"]:
+        return f"F_{_sub('in,' + parts[2])}"
+    if len(parts) == 3 and parts[:2] == ["F", "ext"]:
+        return f"F_{_sub(parts[2])}"
+    if len(parts) == 4 and parts[:2] == ["F", "M"]:
+        return f"F′_{_sub(parts[2])}"
+    return quantity.replace("_", " ")
+
+
+def _number(v: float, digits: int = 4) -> str:
+    """``v`` with ``digits`` significant figures, no exponent below 10^7, − for minus."""
+    if v == 0 or not math.isfinite(v):
+        return "0" if v == 0 else str(v)
+    v = float(f"{v:.{digits}g}")               # rounded first: 9.99996 → 10.00, not 10.000
+    places = max(0, digits - 1 - int(math.floor(math.log10(abs(v)))))
+    s = f"{v:.{places}f}" if abs(v) < 1e7 else f"{v:.{digits - 1}e}"
+    return s.replace("-", "−")
+
+
+def _signed(v: float, digits: int = 4) -> str:
+    return ("+" if v >= 0 else "") + _number(v, digits)
+
+
+def _colour(style: Style, kind: str) -> str:
+    return style.vector_colour if _KIND_COLOUR.get(kind) == "vector" else style.component_colour
+
+
+def _dashed_vector(canvas: Canvas, parent, tail, head, colour: str, ident: str, head_ident: str, style: Style,
+                   width_: float | None = None):
+    """A dashed vector: one ``<line>`` tail → head (it measures the whole vector), dashes up to
+    under its arrowhead, and the head."""
+    L = math.dist(tail, head)
+    head_len = min(style.arrow_length, 0.5 * L) if L >= NO_HEAD_MM else 0.0
+    shaft = max(L - head_len * 0.8, 0.0)
+    on, off = (float(x) for x in style.dash.split())
+    pattern, done = [], 0.0
+    while done + on < shaft:
+        pattern += [on, off]
+        done += on + off
+    pattern += [max(min(on, shaft - done), 0.0), L + 1.0]
+    w = style.vector if width_ is None else width_
+    el = canvas.line(parent, tail, head, width=w, id=ident, stroke=colour, stroke_width=fmt(w, 3),
+                     stroke_dasharray=" ".join(fmt(x, 3) for x in pattern))
+    _arrow(canvas, parent, tail, head, colour, head_ident, style, of=ident)
+    return el
+
+
+def _solid_vector(canvas: Canvas, parent, tail, head, colour: str, ident: str, head_ident: str, style: Style,
+                  width_: float | None = None):
+    """A vector as one ``<line>`` whose visible shaft stops under its arrowhead (as marks.vector)."""
+    L = math.dist(tail, head)
+    head_len = min(style.arrow_length, 0.5 * L) if L >= NO_HEAD_MM else 0.0
+    shaft = max(L - head_len * 0.8, 0.0)
+    w = style.vector if width_ is None else width_
+    el = canvas.line(parent, tail, head, width=w, id=ident, stroke=colour, stroke_width=fmt(w, 3),
+                     stroke_dasharray=f"{fmt(shaft, 3)} {fmt(L + 1, 3)}")
+    _arrow(canvas, parent, tail, head, colour, head_ident, style, of=ident)
+    return el
+
+
+def _side_label_direction(tail, head, centre) -> np.ndarray:
+    """Perpendicular to a side, away from the polygon's centre."""
+    d = np.subtract(head, tail)
+    n = np.array([-d[1], d[0]])
+    if np.linalg.norm(n) < 1e-12:
+        return np.array([0.6, 0.8])
+    mid = np.add(tail, head) / 2
+    return n if float(n @ (mid - np.asarray(centre))) >= 0 else -n
+
+
+# --- force plans ------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class _Panel:
+    plan: ForcePlan
+    content: tuple[float, float, float, float]     # the polygon's box, mm y up (labels' room included)
+    caption: tuple[str, ...]
+    rows: tuple[tuple[str, str, str], ...]
+    width: float
+    height: float
+
+
+def _table_rows(plan: ForcePlan) -> list[tuple[str, str, str]]:
+    drawn = {v.quantity: v for v in plan.vectors}
+    rows = []
+    for t in list(plan.terms) + list(plan.totals) + list(plan.internal):
+        v = drawn.get(t.quantity)
+        rows.append((symbol(t.quantity), _number(t.value), _number(v.length, 4) if v else "0 (not drawn)"))
+    return rows
+
+
+def _panel(plan: ForcePlan, style: Style) -> _Panel:
+    coords = [p.xy for p in plan.points] + [l.start for l in plan.lines] + [l.end for l in plan.lines]
+    content = bounds(coords)
+    equation = " + ".join(symbol(t.quantity) for t in plan.terms) + " = 0"
+    head = f"Force plan of group {plan.group},  μ_F = {plan.mu:g} N/mm"
+    w_poly = content[2] - content[0]
+    table_w = sum(TABLE_COLUMNS_MM)
+    room = max(w_poly, table_w, 90.0)
+    caption = tuple(wrap(head, room, TABLE_TEXT_MM) + wrap(equation, room, TABLE_TEXT_MM, indent="   "))
+    rows = _table_rows(plan)
+    w = max(room, max(width(runs(c), TABLE_TEXT_MM, False) for c in caption))
+    h = TABLE_LEAD_MM * (len(caption) + 0.5) + (content[3] - content[1]) + TABLE_LEAD_MM * (len(rows) + 1.8)
+    return _Panel(plan, content, caption, tuple(rows), w, h)
+
+
+def _pack(panels: Sequence[_Panel], room_w: float, room_h: float) -> list[list[tuple[_Panel, float, float]]]:
+    """Panels in rows, left to right, sheet after sheet: (panel, x, y) from each sheet's top left."""
+    sheets, sheet, x, y, row_h = [], [], 0.0, 0.0, 0.0
+    for p in panels:
+        if sheet and x + p.width > room_w:
+            x, y, row_h = 0.0, y + row_h + PANEL_GAP_MM, 0.0
+        if sheet and y + p.height > room_h:
+            sheets.append(sheet)
+            sheet, x, y, row_h = [], 0.0, 0.0, 0.0
+        sheet.append((p, x, y))
+        x += p.width + PANEL_GAP_MM
+        row_h = max(row_h, p.height)
+    if sheet:
+        sheets.append(sheet)
+    return sheets
+
+
+def _place(canvas: Canvas, content, box) -> None:
+    """Move the canvas so that ``content`` (mm, y up) is centred in paper ``box`` (x0, y0, x1, y1)."""
+    canvas.dx = (box[0] + box[2]) / 2 - (content[0] + content[2]) / 2
+    canvas.dy = (box[1] + box[3]) / 2 + (content[1] + content[3]) / 2
+
+
+def draw_force_plans(plans: Sequence[ForcePlan], heading: Heading, *, ident: str,
+                     style: Style = Style()) -> tuple[str, ...]:
+    """SVG texts of the force plans of one position (see the module docstring): usually one
+    sheet; more when the panels do not fit one A3 sheet."""
+    if not plans:
+        return ()
+    panels = [_panel(p, style) for p in plans]
+    a3 = FORMATS[2].area
+    groups = _pack(panels, a3.x1 - a3.x0, a3.y1 - a3.y0)
+    out = []
+    for s, placed in enumerate(groups):
+        sid = ident if len(groups) == 1 else f"{ident}-{s + 1}"
+        out.append(_force_sheet(placed, heading, sid, style))
+    return tuple(out)
+
+
+def _force_sheet(placed, heading: Heading, ident: str, style: Style) -> str:
+    W = max(x + p.width for p, x, _ in placed)
+    H = max(y + p.height for p, _, y in placed)
+    fmt_ = choose_format(W, H) or FORMATS[2]
+    scales = ";  ".join(f"{p.plan.group}: μ_F = {p.plan.mu:g} N/mm" for p, _, _ in placed)
+    dwg, canvas = new_sheet(fmt_, (0.0, 0.0, W, H), ident=ident, style=style,
+                            block=TitleBlock(heading.mechanism, heading.sheet, heading.position, scales))
+    ox, oy = canvas.dx, canvas.dy - H          # paper position of the packed content's top left
+    texts = dwg.g(id=f"{ident}-texts")
+    rules = dwg.g(id=f"{ident}-rules", stroke=style.colour, stroke_width=fmt(style.thin, 3))
+    for k, (p, x, y) in enumerate(placed):
+        pid = f"{ident}-g{k}"
+        left, top = ox + x, oy + y
+        for r, line in enumerate(p.caption):
+            canvas.text(texts, (left, top + TABLE_LEAD_MM * (r + 0.75)), line, size=TABLE_TEXT_MM,
+                        ident=f"{pid}-cap{r}")
+        poly_top = top + TABLE_LEAD_MM * (len(p.caption) + 0.5)
+        ch, cw = p.content[3] - p.content[1], p.content[2] - p.content[0]
+        _place(canvas, p.content, (left, poly_top, left + max(cw, p.width), poly_top + ch))
+        _force_layers(dwg, canvas, p.plan, pid, style)
+        ty = poly_top + ch + TABLE_LEAD_MM * 0.9
+        cols = np.cumsum((0.0,) + TABLE_COLUMNS_MM)
+        for c, head in enumerate(("force", "F, N", "drawn, mm")):
+            canvas.text(texts, (left + cols[c], ty), head, size=TABLE_TEXT_MM, ident=f"{pid}-th{c}")
+        rule_y = ty + TABLE_LEAD_MM * 0.45
+        canvas.line(rules, (left - canvas.dx, canvas.dy - rule_y), (left + cols[-1] - canvas.dx, canvas.dy - rule_y),
+                    id=f"{pid}-rule")
+        for r, row in enumerate(p.rows):
+            yy = ty + TABLE_LEAD_MM * (r + 1.1)
+            for c, cell in enumerate(row):
+                canvas.text(texts, (left + cols[c], yy), cell, size=TABLE_TEXT_MM, ident=f"{pid}-t{r}-{c}")
+    dwg.add(rules)
+    dwg.add(texts)
+    canvas.place_labels(dwg.add(dwg.g(id=f"{ident}-leaders")))
+    return dwg.tostring()
+
+
+def _force_layers(dwg, canvas: Canvas, plan: ForcePlan, ident: str, style: Style) -> None:
+    """One polygon's group: direction lines, tagged vectors with heads, vertices and labels."""
+    g = dwg.g(id=f"{ident}-plan")
+    g.attribs["data-mu"] = repr(plan.mu)
+    g.attribs["data-plan"] = "force"
+    g.attribs["data-group"] = plan.group
+    g.attribs["data-vectors"] = str(len(plan.vectors))
+    lines = dwg.g(id=f"{ident}-construction", stroke=style.construction_colour, stroke_width=fmt(style.thin, 3),
+                  stroke_dasharray=style.dash, fill="none")
+    for k, l in enumerate(plan.lines):
+        el = canvas.line(lines, l.start, l.end, id=f"{ident}-cl{k}")
+        el.attribs["data-construction"] = l.quantity
+    g.add(lines)
+    labels = dwg.g(id=f"{ident}-labels", fill=style.colour)
+    centre = np.mean([p.xy for p in plan.points], axis=0)
+
+    def vertex(xy) -> str | None:
+        return next((p.label for p in plan.points if math.dist(p.xy, xy) <= 1e-9), None)
+
+    for k, v in enumerate(plan.vectors):
+        if v.role == "internal":
+            el = _dashed_vector(canvas, g, v.tail, v.head, style.colour, f"{ident}-v{k}", f"{ident}-h{k}", style)
+            colour = style.colour
+        elif v.role == "total":
+            colour = style.colour
+            el = _solid_vector(canvas, g, v.tail, v.head, colour, f"{ident}-v{k}", f"{ident}-h{k}", style)
+        else:
+            colour = _colour(style, v.kind)
+            el = _solid_vector(canvas, g, v.tail, v.head, colour, f"{ident}-v{k}", f"{ident}-h{k}", style)
+        _tag(el, canvas, v.quantity, v.value, v.tail, v.head, vertex(v.tail), vertex(v.head))
+        el.attribs["data-role"] = v.role
+        el.attribs["data-kind"] = v.kind
+        mid = tuple(np.add(v.tail, v.head) / 2)
+        canvas.label(labels, mid, symbol(v.quantity), size=style.text,
+                     prefer=_side_label_direction(v.tail, v.head, centre), ident=f"{ident}-vl{k}", digits=False,
+                     fill=colour, near=0.4)
+    for k, p in enumerate(plan.points):
+        canvas.circle(labels, p.xy, 0.45, filled=True, id=f"{ident}-d{k}")
+        away = np.subtract(p.xy, centre)
+        canvas.label(labels, p.xy, _markup(p.label), size=style.small_text + 0.5,
+                     prefer=away if np.linalg.norm(away) > 1e-9 else (0.6, 0.8), ident=f"{ident}-l{k}",
+                     digits=False, near=0.5)
+    g.add(labels)
+    dwg.add(g)
+
+
+# --- the lever --------------------------------------------------------------------------------
+
+def _arm_numbers(lever: Lever) -> dict[int, int]:
+    """Index of a force on the lever → the number of its drawn arm (1, 2, … in order)."""
+    drawn = [k for k, f in enumerate(lever.forces) if f.arm >= MIN_ARM_MM]
+    return {k: n + 1 for n, k in enumerate(drawn)}
+
+
+def _lever_text(lever: Lever) -> list[str]:
+    """The written computation of the lever (rows of label markup)."""
+    rows = [f"Velocity plan turned 90° {lever.sense} about the pole {lever.pole} (μ_V = {lever.mu_v:g} (m/s)/mm);",
+            f"forces applied at the images of their points, μ_F = {lever.mu:g} N/mm; arms h in mm;",
+            "moments about p, counter-clockwise positive (N·mm):"]
+    loads = [f for f in lever.forces if f.kind != "balance"]
+    numbers = _arm_numbers(lever)
+    couples: dict[str, LeverForce] = {}
+    for f in lever.forces:
+        if f.kind == "couple":
+            couples.setdefault(f.source, f)
+    for src, f in couples.items():
+        rows.append(f"  {symbol(src)} as the couple {symbol(f.quantity)} = {symbol(src)} / l = {_number(f.value)} N "
+                    "⊥ the link at the images of its two points (dashed)")
+    for f in loads:
+        k = lever.forces.index(f)
+        h = f"h_{_sub(str(numbers[k]))}" if k in numbers else "h"
+        rows.append(f"  {symbol(f.quantity)} = {_number(f.value)} N, {h} = {_number(f.arm)} mm:  "
+                    f"{_signed(f.moment, 5)}")
+    rows.append(f"Σ M_p(loads) = {_signed(lever.moment_sum, 5)} N·mm;  Σ M_p = 0 gives")
+    if lever.balance == "force":
+        f = lever.forces[-1]
+        k = lever.forces.index(f)
+        h = f"h_{_sub(str(numbers[k]))}" if k in numbers else "h"
+        rows.append(f"  {symbol(lever.balance_quantity)} = −Σ M_p(loads) / (±{h}) = "
+                    f"{_signed(-lever.moment_sum, 5)} / ({_signed(lever.unit_moment, 4)}) = "
+                    f"{_number(lever.result, 5)} N")
+        rows.append(f"  (along the given direction; |{symbol(lever.balance_quantity)}| = {_number(abs(lever.result), 5)}"
+                    " N)")
+    else:
+        m = symbol(lever.balance_quantity)
+        rows.append(f"  {m} as the couple F′ = {m} / l at o and a, ⊥ OA: {m} = −Σ M_p(loads) / "
+                    f"({_signed(lever.unit_moment, 4)} mm/m)")
+        sense = "counter-clockwise" if lever.result > 0 else "clockwise"
+        rows.append(f"  {m} = {_number(lever.result, 5)} N·m ({sense})")
+        if lever.omega:
+            drive = "driving" if lever.result * lever.omega > 0 else "braking"
+            rows.append(f"  ω_1 = {_number(lever.omega, 4)} rad/s: {m} is {drive}")
+    return rows
+
+
+def draw_lever(lever: Lever, heading: Heading, *, ident: str, style: Style = Style()) -> str:
+    """SVG text of Zhukovsky's lever at one position (see the module docstring)."""
+    coords = [p.xy for p in lever.points] + [f.head for f in lever.forces] + [f.foot for f in lever.forces]
+    content = bounds(coords)
+    rows = [r for row in _lever_text(lever) for r in wrap(row, LEVER_TEXT_MM, TABLE_TEXT_MM, indent="      ")]
+    text_w = max(width(runs(r), TABLE_TEXT_MM, False) for r in rows) + 2.0
+    text_h = TABLE_LEAD_MM * (len(rows) + 1)
+    cw, ch = content[2] - content[0], content[3] - content[1]
+    beside = (cw + PANEL_GAP_MM + text_w, max(ch, text_h))
+    below = (max(cw, text_w), ch + PANEL_GAP_MM + text_h)
+    fmt_b, fmt_u = choose_format(*beside), choose_format(*below)
+    order = {f: k for k, f in enumerate(FORMATS)}
+    use_beside = fmt_b is not None and (fmt_u is None or order[fmt_b] <= order[fmt_u])
+    W, H = beside if use_beside else below
+    fmt_ = (fmt_b if use_beside else fmt_u) or FORMATS[2]
+    scales = f"μ_V = {lever.mu_v:g} (m/s)/mm (turned {lever.sense});  μ_F = {lever.mu:g} N/mm"
+    dwg, canvas = new_sheet(fmt_, (0.0, 0.0, W, H), ident=ident, style=style,
+                            block=TitleBlock(heading.mechanism, heading.sheet, heading.position, scales))
+    ox, oy = canvas.dx, canvas.dy - H
+    if use_beside:
+        lever_box = (ox, oy, ox + cw, oy + H)
+        tx, ty = ox + cw + PANEL_GAP_MM, oy + (H - text_h) / 2
+    else:
+        lever_box = (ox, oy, ox + W, oy + ch)
+        tx, ty = ox, oy + ch + PANEL_GAP_MM
+    _place(canvas, content, lever_box)
+    _lever_layers(dwg, canvas, lever, ident, style)
+    texts = dwg.g(id=f"{ident}-texts")
+    for r, row in enumerate(rows):
+        canvas.text(texts, (tx, ty + TABLE_LEAD_MM * (r + 0.8)), row, size=TABLE_TEXT_MM, ident=f"{ident}-w{r}")
+    dwg.add(texts)
+    canvas.place_labels(dwg.add(dwg.g(id=f"{ident}-leaders")))
+    return dwg.tostring()
+
+
+def _lever_layers(dwg, canvas: Canvas, lever: Lever, ident: str, style: Style) -> None:
+    turned = dwg.g(id=f"{ident}-turned", stroke=style.colour, stroke_width=fmt(style.vector, 3), fill="none")
+    turned.attribs["data-role"] = "turned velocity plan"
+    for k, (a, b) in enumerate(lever.segments):
+        canvas.line(turned, a, b, width=style.vector, id=f"{ident}-s{k}")
+    dwg.add(turned)
+    g = dwg.g(id=f"{ident}-lever")
+    g.attribs["data-mu"] = repr(lever.mu)
+    g.attribs["data-plan"] = "lever"
+    g.attribs["data-mu-v"] = repr(lever.mu_v)
+    g.attribs["data-sense"] = lever.sense
+    g.attribs["data-vectors"] = str(len(lever.forces))
+    g.attribs["data-pole"] = ",".join(canvas.xy(lever.pole_xy))
+    cons = dwg.g(id=f"{ident}-arms", stroke=style.construction_colour, stroke_width=fmt(style.thin, 3), fill="none")
+    labels = dwg.g(id=f"{ident}-labels", fill=style.colour)
+    pole = np.asarray(lever.pole_xy)
+    numbers = _arm_numbers(lever)
+    for k, f in enumerate(lever.forces):
+        colour = style.component_colour if f.kind == "balance" else style.vector_colour
+        draw = _dashed_vector if f.quantity.startswith("F:M:") else _solid_vector
+        el = draw(canvas, g, f.tail, f.head, colour, f"{ident}-v{k}", f"{ident}-h{k}", style)
+        _tag(el, canvas, f.quantity, f.value, f.tail, f.head, f.at, f.quantity)
+        el.attribs["data-h"] = repr(f.arm)
+        el.attribs["data-moment"] = repr(f.moment)
+        el.attribs["data-kind"] = f.kind
+        canvas.label(labels, f.head, symbol(f.quantity), size=style.text, prefer=np.subtract(f.head, f.tail),
+                     ident=f"{ident}-vl{k}", digits=False, fill=colour, near=0.6)
+        if f.arm < MIN_ARM_MM:
+            continue
+        arm = canvas.line(cons, pole, f.foot, id=f"{ident}-a{k}")
+        arm.attribs["data-construction"] = "arm"
+        arm.attribs["data-arm"] = f.quantity
+        # the line of action on to the foot, when the foot is off the arrow
+        t, hd, foot = np.asarray(f.tail), np.asarray(f.head), np.asarray(f.foot)
+        d = hd - t
+        s = float((foot - t) @ d / (d @ d)) if float(d @ d) > 0 else 0.0
+        if s < 0 or s > 1:
+            near = t if s < 0 else hd
+            ext = canvas.line(cons, near, foot, id=f"{ident}-e{k}", stroke_dasharray=style.dash)
+            ext.attribs["data-construction"] = "line of action"
+        if f.arm >= 3 * RIGHT_ANGLE_MM and math.dist(f.tail, f.head) > 0:
+            e1 = (pole - foot) / f.arm
+            e2 = d / math.sqrt(float(d @ d))
+            if float((t - foot) @ e2) < 0:
+                e2 = -e2
+            r = RIGHT_ANGLE_MM
+            canvas.polyline(cons, [foot + r * e1, foot + r * (e1 + e2), foot + r * e2], id=f"{ident}-ra{k}")
+        mid = (pole + foot) / 2
+        n = np.array([-(foot - pole)[1], (foot - pole)[0]])
+        canvas.label(labels, tuple(mid), f"h_{_sub(str(numbers[k]))}", size=style.small_text + 0.5, prefer=n,
+                     ident=f"{ident}-al{k}", digits=False, fill=style.construction_colour, near=0.4)
+    g.add(cons)
+    centre = np.mean([p.xy for p in lever.points], axis=0)
+    seen: list[tuple[float, float]] = []
+    for k, p in enumerate(lever.points):
+        if any(math.dist(p.xy, q) < 0.3 for q in seen):
+            continue
+        same = [q.label for q in lever.points if math.dist(q.xy, p.xy) < 0.3]
+        seen.append(p.xy)
+        canvas.circle(labels, p.xy, 0.45, filled=True, id=f"{ident}-d{k}")
+        away = np.subtract(p.xy, centre)
+        canvas.label(labels, p.xy, " ≡ ".join(_markup(s) for s in same), size=style.text,
+                     prefer=away if np.linalg.norm(away) > 1e-9 else (-0.6, -0.8), ident=f"{ident}-l{k}",
+                     digits=False, near=0.5)
+    g.add(labels)
+    dwg.add(g)
+
