@@ -34,6 +34,7 @@ from typing import Sequence
 
 import numpy as np
 
+from ..errors import DrawingError
 from ..constructions.forces import ForcePlan, Lever, LeverForce, component_of
 from .canvas import Canvas, fmt
 from .marks import NO_HEAD_MM, arrow as _arrow, bounds, markup as _markup
@@ -366,6 +367,9 @@ def draw_lever(lever: Lever, heading: Heading, *, ident: str, style: Style = Sty
     below = (max(cw, text_w), ch + PANEL_GAP_MM + text_h)
     fmt_b, fmt_u = choose_format(*beside), choose_format(*below)
     order = {f: k for k, f in enumerate(FORMATS)}
+    if fmt_b is None and fmt_u is None:
+        raise DrawingError(f"Zhukovsky's lever is {cw:.0f} mm × {ch:.0f} mm with its forces and arms, beyond an A3 "
+                           "sheet with its computation: turn a velocity plan of a coarser μV")
     use_beside = fmt_b is not None and (fmt_u is None or order[fmt_b] <= order[fmt_u])
     W, H = beside if use_beside else below
     fmt_ = (fmt_b if use_beside else fmt_u) or FORMATS[2]
