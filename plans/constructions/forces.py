@@ -443,7 +443,7 @@ def zhukovsky_lever(plan, loads: Sequence[LeverLoad], balance: BalanceForce | Ba
         if not math.isfinite(c.moment):
             raise ConstructionError(f"{c.quantity}: moment {c.moment!r} is not a finite number")
         e1, e2, per = _couple_direction(c.ends, c.length_m, c.direction, c.quantity)
-        names = [_label_of(pts, e, lab, f"{c.quantity.split(':')[-1]}{k + 1}") for k, (e, lab) in
+        names = [_label_of(pts, e, lab, f"m{c.quantity.split(':')[-1]}{'ab'[k]}") for k, (e, lab) in
                  enumerate(((e1, c.labels[0]), (e2, c.labels[1])))]
         for e, sign, name in ((e1, -1.0, names[0]), (e2, 1.0, names[1])):
             items.append((f"F:{c.quantity}:{name}", "couple", e, sign * c.moment * per, name, c.quantity))

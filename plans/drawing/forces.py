@@ -345,10 +345,10 @@ def _lever_text(lever: Lever) -> list[str]:
                     " N)")
     else:
         m = symbol(lever.balance_quantity)
-        rows.append(f"  {m} as the couple F′ = {m} / l at o and a, ⊥ OA: {m} = −Σ M_p(loads) / "
-                    f"({_signed(lever.unit_moment, 4)} mm/m)")
+        rows.append(f"  {m} as the couple F′ = {m} / l_{{OA}} ⊥ OA at o and a: its moment about p is {m}·k, "
+                    f"k = {_signed(lever.unit_moment, 4)} mm/m;")
         sense = "counter-clockwise" if lever.result > 0 else "clockwise"
-        rows.append(f"  {m} = {_number(lever.result, 5)} N·m ({sense})")
+        rows.append(f"  {m} = −Σ M_p(loads) / k = {_number(lever.result, 5)} N·m ({sense})")
         if lever.omega:
             drive = "driving" if lever.result * lever.omega > 0 else "braking"
             rows.append(f"  ω_1 = {_number(lever.omega, 4)} rad/s: {m} is {drive}")
