@@ -9,6 +9,7 @@ them (SVG, PNG, PDF and the JSON report), all or nothing."""
 from __future__ import annotations
 
 import base64
+import contextlib
 import html
 import json
 import math
@@ -38,12 +39,35 @@ from .kinematics import WARN_SIN, Motion, analyse
 from .kinematics.centres import Centres
 from .kinematics.cycle import Cycle, solve_cycle
 from .kinematics.tolerances import CROSS_CHECK_RTOL
+from .kinetostatics import Forces, solve_forces
 from .output import check_folder, write_files
 from .model import build_mechanism
 from .scene import Scene, read_scene
 from .structure import ComplexGroup, analyse_structure
 
-__all__ = ["Rendered", "Sheet", "Sheets", "render", "render_scene", "report", "solve_scene"]
+__all__ = ["Rendered", "Sheet", "Sheets", "render", "render_scene", "report", "solve_scene", "record_stages"]
+
+#: The stages run, in order, while :func:`record_stages` is active (None otherwise).
+_stages: list[str] | None = None
+#: The kinematic stages an order of analysis runs.
+_ORDER_STAGES = ("positions", "velocities", "accelerations")
+
+
+@contextlib.contextmanager
+def record_stages() -> Iterator[list[str]]:
+    """Record the computing stages each render runs (``positions``, ``velocities``,
+    ``accelerations``, ``forces``), in order, into the list it yields."""
+    global _stages
+    previous, _stages = _stages, []
+    try:
+        yield _stages
+    finally:
+        _stages = previous
+
+
+def _ran(*stages: str) -> None:
+    if _stages is not None:
+        _stages.extend(stages)
 
 
 @dataclass(frozen=True)
@@ -55,6 +79,7 @@ class Rendered:
     motion: Motion
     scales: Scales
     warnings: tuple[str, ...]
+    forces: Forces | None = None    # the force analysis, when the scene asks for it
 
 
 def solve_scene(scene: Scene) -> Motion:
@@ -70,6 +95,9 @@ def _solve(scene: Scene) -> tuple[Motion, Cycle | None]:
     structure = analyse_structure(mech)
     order = 2 if "acceleration" in scene.draw or scene.senses else \
         1 if {"velocity", "centres", "velocities"} & set(scene.draw) else 0
+    if scene.wants_forces:      # the power balance needs velocities, inertia accelerations
+        order = max(order, 2 if scene.wants_inertia else 1)
+    _ran(*_ORDER_STAGES[:order + 1])
     c = scene.cycle
     if c is None:
         return analyse(mech, structure, order=order), None
@@ -77,6 +105,14 @@ def _solve(scene: Scene) -> tuple[Motion, Cycle | None]:
                         start=None if c.start == "extreme" else scene.drive.values[0],
                         dense_order=2 if "diagrams" in scene.draw else 0)
     return cycle.motion, cycle
+
+
+def _forces(scene: Scene, motion: Motion) -> Forces | None:
+    """The force analysis when the scene asks for it (force plans, the lever, or [balance])."""
+    if not scene.wants_forces:
+        return None
+    _ran("forces")
+    return solve_forces(motion, scene)
 
 
 def _scales(scene: Scene, motion: Motion, rest: tuple[bool, bool] = (False, False)) -> Scales:
@@ -164,10 +200,11 @@ def _position_label(motion: Motion, i: int) -> str:
         f"s = {v:g} m, v = {d.speed:g} m/s, a = {d.rate:g} m/s²"
 
 
-def report(scene: Scene, motion: Motion, scales: Scales) -> dict:
+def report(scene: Scene, motion: Motion, scales: Scales, forces: Forces | None = None) -> dict:
     """The JSON report: structure and, per position, points, links, scales, conditioning,
     instantaneous centres and the special points of class III groups (SI), all read off
-    ``motion`` (the special points as its second, special-point solution gives them)."""
+    ``motion`` (the special points as its second, special-point solution gives them); with
+    ``forces``, the force analysis (:func:`_forces_at`)."""
     mech = motion.mechanism
     key = "angle" if mech.drive.kind.angular else "displacement"
     positions = []
@@ -204,8 +241,59 @@ def report(scene: Scene, motion: Motion, scales: Scales) -> dict:
             pos["relative_centres"] = {f"{a}-{b}": _xy(c.at(i)) for (a, b), c in ic.relative.items()}
         if special_pts:
             pos["special_points"] = {g: {p.name: _special(p, i) for p in pts} for g, pts in special_pts.items()}
+        if forces is not None:
+            pos["forces"] = _forces_at(scene, forces, i)
         positions.append(pos)
     return {"title": scene.title, "structure": motion.structure.as_dict(), "positions": positions}
+
+
+def _num(x) -> float | None:
+    """A float for the JSON report, None for NaN (undefined)."""
+    x = float(x)
+    return None if math.isnan(x) else x
+
+
+def _forces_at(scene: Scene, forces: Forces, i: int) -> dict:
+    """The force analysis at position i (N, N·m, m): ``reactions`` ("i-j" → the force of link i
+    on link j), ``prismatic`` (per prismatic pair, where its reaction acts), ``inertia``,
+    ``gravity`` (when set), ``balance`` (group by group), ``power`` (the same element from the
+    power balance) and ``power_residual``; ``lever`` is left for the lever's drawing."""
+    out: dict = {"reactions": {k: _xy(r.force[i]) for k, r in forces.reactions.items()}}
+    prismatic = {}
+    for k, r in forces.reactions.items():
+        if r.kind == "P":
+            off = _num(r.offset[i])
+            prismatic[k] = {"at": r.at, "u": _xy(r.u[i]), "origin": _xy(r.origin[i]), "moment": float(r.moment[i]),
+                            "offset": off, "point": None if off is None else _xy(r.point[i])}
+    if prismatic:
+        out["prismatic"] = prismatic
+    inertia: dict = {}
+    for l in forces.loads:
+        if l.kind == "inertia":
+            inertia.setdefault(l.link, {})["force"] = _xy(l.force[i])
+    for c in forces.couples:
+        if c.kind == "inertia":
+            inertia.setdefault(c.link, {})["moment"] = float(c.moment[i])
+    if inertia:
+        out["inertia"] = {link: {"at": scene.masses[link].centre, **v} for link, v in inertia.items()}
+    if scene.gravity is not None:
+        out["gravity"] = {l.link: _xy(l.force[i]) for l in forces.loads if l.kind == "gravity"}
+    b = forces.balance
+    if b.kind == "moment":
+        out["balance"] = {"link": b.link, "moment": float(b.value[i])}
+        power = None if forces.power is None else {"moment": _num(forces.power[i])}
+    else:
+        out["balance"] = {"link": b.link, "at": b.at, "point": _xy(b.point[i]), "force": _xy(b.vector[i]),
+                          "value": float(b.value[i]), "direction": _xy(b.direction[i])}
+        if b.reacts_on is not None:
+            out["balance"]["reacts_on"] = b.reacts_on
+        p = None if forces.power is None else _num(forces.power[i])
+        power = None if forces.power is None else \
+            {"force": None if p is None else _xy(p * b.direction[i]), "value": p}
+    out["power"] = power
+    out["power_residual"] = None if forces.power_residual is None else float(forces.power_residual[i])
+    out["lever"] = None
+    return out
 
 
 def _no_negative_zero(data):
@@ -265,6 +353,7 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
         motion, cycle = _solve(scene)
         rest = at_rest(motion)
         scales = _scales(scene, motion, rest)
+        forces = _forces(scene, motion)
     except PlansError as exc:
         raise exc.in_file(where) if where and hasattr(exc, "in_file") else exc
     for name, worst in motion.triad_disagreement.items():
@@ -325,13 +414,13 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
             sym = "μ_V" if kind == "velocity" else "μ_a"
             files[f"{stem}-{kind}{sfx}.svg"] = draw_plan(plan, heading, ident=f"{kind}{sfx or ''}", style=style,
                                                          notes=tuple(n for n in scales.notes if n.startswith(sym)))
-    data = report(scene, motion, scales)
+    data = report(scene, motion, scales, forces)
     if cycle is not None:
         sheets, data["cycle"] = _cycle_sheets(scene, cycle, scales, stem, style)
         files.update(sheets)
     data = _no_negative_zero(data)
     files[f"{stem}.json"] = json.dumps(data, indent=1, ensure_ascii=False) + "\n"
-    return Rendered(stem, files, motion, scales, tuple(warnings))
+    return Rendered(stem, files, motion, scales, tuple(warnings), forces)
 
 
 def _cycle_sheets(scene: Scene, cycle: Cycle, scales: Scales, stem: str, style: Style) -> tuple[dict[str, str], dict]:
@@ -560,7 +649,7 @@ def render(scene: Scene | str | os.PathLike, *, style: Style = Style(), stem: st
         rendered = _render(scene, stem=name, where=scene.file, style=style)
     else:
         raise TypeError(f"plans.render takes a Scene or the path of a scene file, not {type(scene).__name__}")
-    return Sheets(rendered.stem, rendered.files, rendered.motion, rendered.scales, rendered.warnings)
+    return Sheets(rendered.stem, rendered.files, rendered.motion, rendered.scales, rendered.warnings, rendered.forces)
 
 
 def stem_of(title: str) -> str:

@@ -19,12 +19,14 @@ from typing import Any, Mapping
 
 from .errors import SceneError
 
-__all__ = ["Scene", "Slider", "Drive", "Cycle", "read_scene", "parse_scene", "FRAME", "DRAWABLE", "MAX_COORD_M", "MIN_SIZE_M",
+__all__ = ["Scene", "Slider", "Drive", "Cycle", "Mass", "AppliedForce", "AppliedMoment", "Balance", "read_scene", "parse_scene", "FRAME", "DRAWABLE", "MAX_COORD_M", "MIN_SIZE_M",
            "MAX_ANGLE_DEG", "MAX_WALK_STEPS", "MAX_POSITIONS", "MAX_OMEGA", "MAX_EPSILON", "MAX_SPEED",
            "MAX_ACCELERATION", "MIN_RATE", "MAX_TITLE_CHARS"]
 
 FRAME = "0"
-DRAWABLE = ("scheme", "velocity", "acceleration", "centres", "positions", "diagrams", "velocities")
+DRAWABLE = ("scheme", "velocity", "acceleration", "centres", "positions", "diagrams", "velocities", "forces", "lever")
+#: What needs the force analysis (kinetostatics): the force plans and Zhukovsky's lever.
+FORCE_SHEETS = ("forces", "lever")
 #: Sheets of the whole cycle: they need ``[drive] positions = N``.
 CYCLE_SHEETS = ("positions", "diagrams", "velocities")
 #: Fewest and most positions of a cycle (``[drive] positions``): three chords at least for the
@@ -37,7 +39,8 @@ MAX_VELOCITY_PLANS = 24
 CYCLE_STARTS = ("angle", "extreme")
 #: What a scene draws when [plans] says nothing.
 DEFAULT_DRAW = ("scheme", "velocity", "acceleration")
-_TOP_KEYS = {"title", "description", "points", "links", "sliders", "drive", "lengths", "plans", "scales"}
+_TOP_KEYS = {"title", "description", "points", "links", "sliders", "drive", "lengths", "plans", "scales",
+             "masses", "forces", "moments", "gravity", "balance"}
 
 # --- bounds of what a scene may ask for ------------------------------------------------------
 #: Largest |coordinate| of a sketch point and largest length, m. Real linkages measure metres to
@@ -83,6 +86,10 @@ MIN_RATE = 1e-9
 #: 2 mm text and cut short with "…" beyond that (about 130 characters); the whole title stays
 #: in the SVG's <title> and in the JSON report.
 MAX_TITLE_CHARS = 200
+#: Largest |force| (N), |moment| (N·m), mass (kg), moment of inertia (kg·m²) and |g| (m/s²) a
+#: scene may give: far beyond any machine, and with coordinates up to MAX_COORD_M and
+#: accelerations up to ω²·r their products (m·a·r ≤ 1e20·1e32·1e20) stay ordinary doubles.
+MAX_LOAD = 1e20
 
 #: Values shown in error messages are abbreviated (a nested or huge value stays one short line).
 _SHOW = reprlib.Repr()
@@ -171,6 +178,53 @@ class Cycle:
 
 
 @dataclass(frozen=True)
+class Mass:
+    """The inertia of a moving link (``[masses.NAME]``): ``mass`` (kg), ``inertia`` (kg·m²,
+    about the centre of mass, perpendicular to the plane) and ``centre``, the name of the
+    link's point at its centre of mass."""
+
+    link: str
+    mass: float
+    inertia: float
+    centre: str
+
+
+@dataclass(frozen=True)
+class AppliedForce:
+    """An external force (``[[forces]]``) on ``link`` at its point ``at``: ``vector`` (N) in
+    the fixed x, y frame, the same at every position. ``index`` is its place in the list."""
+
+    link: str
+    at: str
+    vector: tuple[float, float]
+    index: int
+
+
+@dataclass(frozen=True)
+class AppliedMoment:
+    """An external couple (``[[moments]]``) on ``link``: ``value`` (N·m, CCW positive)."""
+
+    link: str
+    value: float
+    index: int
+
+
+@dataclass(frozen=True)
+class Balance:
+    """The balancing element on the driving link (``[balance]``): ``kind`` ``"moment"`` (a
+    couple on the link), ``"force"`` (a force at its point ``at`` along the line at ``angle``°
+    drawn in the sketch, which turns with the link as a slider's guide angle does) or
+    ``"actuator"`` (a hydraulic cylinder's force along its guide: on the rod, and opposite on
+    the cylinder). ``given``: False when the scene has no [balance] (the default element)."""
+
+    link: str
+    kind: str
+    at: str | None = None
+    angle: float | None = None
+    given: bool = True
+
+
+@dataclass(frozen=True)
 class Scene:
     """A validated scene. ``lengths`` maps an unordered point pair to a distance in metres."""
 
@@ -186,6 +240,22 @@ class Scene:
     description: str = ""
     file: str | None = None
     cycle: Cycle | None = None    # [drive] positions = N: the whole revolution (cycle sheets)
+    masses: Mapping[str, Mass] = field(default_factory=dict)      # link → its mass, inertia, centre
+    forces: tuple[AppliedForce, ...] = ()
+    moments: tuple[AppliedMoment, ...] = ()
+    gravity: float | None = None  # g (m/s², acting −y) when given, else no gravity
+    balance: Balance | None = None  # the balancing element when forces are computed
+
+    @property
+    def wants_forces(self) -> bool:
+        """Whether the force analysis runs: the force plans or the lever are drawn, or a
+        [balance] is given."""
+        return bool(set(FORCE_SHEETS) & set(self.draw)) or (self.balance is not None and self.balance.given)
+
+    @property
+    def wants_inertia(self) -> bool:
+        """Whether the force analysis needs accelerations (a link has a mass or an inertia)."""
+        return self.wants_forces and any(m.mass > 0.0 or m.inertia > 0.0 for m in self.masses.values())
 
     def links_of(self, point: str) -> tuple[str, ...]:
         """Names of the links that carry ``point``, in scene order."""
@@ -325,9 +395,14 @@ def _parse(data: Mapping[str, Any], file: str | None) -> Scene:
     draw, senses = _draw({k: v for k, v in plans_table.items() if k not in ("output", "trace", "at")})
     cycle = _cycle(cycle_keys, drive, plans_table, draw, points, links)
     scales = _scales(_table(data, "scales"))
+    masses = _masses(_table(data, "masses"), links)
+    forces = _forces(data.get("forces", []), links)
+    moments = _moments(data.get("moments", []), links)
+    gravity = _number(data["gravity"], "gravity", bound=MAX_LOAD, why=" m/s²") if "gravity" in data else None
+    balance = _balance(data["balance"] if "balance" in data else None, drive, links, points)
     return Scene(title=title or "Mechanism", points=points, links=links, sliders=sliders, drive=drive,
                  lengths=lengths, draw=draw, senses=senses, scales=scales, description=description, file=file,
-                 cycle=cycle)
+                 cycle=cycle, masses=masses, forces=forces, moments=moments, gravity=gravity, balance=balance)
 
 
 # --- helpers -----------------------------------------------------------------------------
@@ -734,3 +809,141 @@ def _scales(table: Mapping[str, Any]) -> dict[str, float]:
             raise SceneError(f"unknown scale {key!r}; use mu_l, mu_v or mu_a", key=f"scales.{key}")
         out[key] = _number(value, f"scales.{key}", positive=True)
     return out
+
+
+# --- loads: masses, forces, moments, the balancing element -----------------------------------
+
+def _moving_link(value: Any, key: str, links: Mapping[str, Any], what: str) -> str:
+    """A moving link named by ``value`` (the frame carries no load that does anything)."""
+    link = _link_ref(value, key, links)
+    if link == FRAME:
+        raise SceneError(f"the frame does not move: {what} on it does nothing; name a moving link", key=key)
+    return link
+
+
+def _point_of(value: Any, key: str, link: str, links: Mapping[str, tuple[str, ...]]) -> str:
+    """A point of ``link`` named by ``value``."""
+    if not isinstance(value, str):
+        raise SceneError(f"a point is named by a string, e.g. \"{links[link][0]}\"; got {_SHOW.repr(value)}", key=key)
+    if value not in links[link]:
+        where = "an unknown point" if not any(value in pts for pts in links.values()) else "not a point of that link"
+        raise SceneError(f"{value!r} is {where}; use a point of link {link} ({', '.join(links[link])}) "
+                         "or add it there in [links]", key=key)
+    return value
+
+
+def _masses(table: Mapping[str, Any], links: Mapping[str, tuple[str, ...]]) -> dict[str, Mass]:
+    out = {}
+    for name, entry in table.items():
+        key = _key("masses", name)
+        link = _moving_link(name, key, links, "a mass")
+        if not isinstance(entry, Mapping):
+            raise SceneError('[masses.NAME] is a table: mass = 2.0, inertia = 0.01, centre = "S2"', key=key)
+        extra = sorted(str(k) for k in set(entry) - {"mass", "inertia", "centre"})
+        if extra:
+            raise SceneError(f"unknown key {extra[0]!r}; a link's mass has mass, inertia, centre", key=f"{key}.{extra[0]}")
+        mass, inertia = (_number(entry.get(k, 0.0), f"{key}.{k}", bound=MAX_LOAD, why=unit)
+                         for k, unit in (("mass", " kg"), ("inertia", " kg·m²")))
+        for k, x in (("mass", mass), ("inertia", inertia)):
+            if x < 0.0:
+                raise SceneError(f"a {k} cannot be negative, got {x:g}; give 0 or more", key=f"{key}.{k}")
+        if "centre" not in entry:
+            raise SceneError("a mass without a centre: add centre = \"NAME\", the link's point at its centre of mass",
+                             key=f"{key}.centre")
+        centre = _point_of(entry["centre"], f"{key}.centre", link, links)
+        out[link] = Mass(link=link, mass=mass, inertia=inertia, centre=centre)
+    return out
+
+
+def _forces(items: Any, links: Mapping[str, tuple[str, ...]]) -> tuple[AppliedForce, ...]:
+    if not isinstance(items, list):
+        raise SceneError("forces must be an array of tables [[forces]]", key="forces")
+    out = []
+    for i, item in enumerate(items):
+        key = f"forces[{i}]"
+        if not isinstance(item, Mapping):
+            raise SceneError("each [[forces]] entry must be a table", key=key)
+        extra = sorted(str(k) for k in set(item) - {"link", "at", "vector", "magnitude", "angle"})
+        if extra:
+            raise SceneError(f"unknown key {extra[0]!r}; a force has link, at, and vector or magnitude with angle",
+                             key=f"{key}.{extra[0]}")
+        for k in ("link", "at"):
+            if k not in item:
+                raise SceneError(f"missing {k!r}; a force needs link, at, and vector = [Fx, Fy] (N)", key=key)
+        link = _moving_link(item["link"], f"{key}.link", links, "a force")
+        at = _point_of(item["at"], f"{key}.at", link, links)
+        if "vector" in item:
+            if "magnitude" in item or "angle" in item:
+                raise SceneError("give either vector = [Fx, Fy] or magnitude with angle, not both", key=key)
+            vec = item["vector"]
+            if not isinstance(vec, list) or len(vec) != 2:
+                raise SceneError(f"vector is [Fx, Fy] in newtons, got {_SHOW.repr(vec)}", key=f"{key}.vector")
+            fx, fy = (_number(c, f"{key}.vector", bound=MAX_LOAD, why=" N") for c in vec)
+        else:
+            if "magnitude" not in item or "angle" not in item:
+                raise SceneError("a force needs vector = [Fx, Fy] (N), or magnitude (N) with angle (°)", key=key)
+            mag = _number(item["magnitude"], f"{key}.magnitude", bound=MAX_LOAD, why=" N")
+            ang = math.radians(_number(item["angle"], f"{key}.angle", bound=MAX_ANGLE_DEG, why="°"))
+            fx, fy = mag * math.cos(ang), mag * math.sin(ang)
+        out.append(AppliedForce(link=link, at=at, vector=(fx, fy), index=i))
+    return tuple(out)
+
+
+def _moments(items: Any, links: Mapping[str, tuple[str, ...]]) -> tuple[AppliedMoment, ...]:
+    if not isinstance(items, list):
+        raise SceneError("moments must be an array of tables [[moments]]", key="moments")
+    out = []
+    for i, item in enumerate(items):
+        key = f"moments[{i}]"
+        if not isinstance(item, Mapping):
+            raise SceneError("each [[moments]] entry must be a table", key=key)
+        extra = sorted(str(k) for k in set(item) - {"link", "value"})
+        if extra:
+            raise SceneError(f"unknown key {extra[0]!r}; a moment has link and value (N·m, CCW positive)",
+                             key=f"{key}.{extra[0]}")
+        for k in ("link", "value"):
+            if k not in item:
+                raise SceneError(f"missing {k!r}; a moment needs link and value (N·m, CCW positive)", key=key)
+        link = _moving_link(item["link"], f"{key}.link", links, "a moment")
+        out.append(AppliedMoment(link=link, value=_number(item["value"], f"{key}.value", bound=MAX_LOAD, why=" N·m"),
+                                 index=i))
+    return tuple(out)
+
+
+def _balance(table: Any, drive: Drive, links: Mapping[str, tuple[str, ...]],
+             points: Mapping[str, tuple[float, float]]) -> Balance:
+    """The balancing element: [balance] when given, else the drive's default (a moment on a
+    crank or a coupler, a force along the guide of a slider or a cylinder)."""
+    if table is None:
+        kind = "moment" if drive.kind.angular else "actuator" if drive.kind == DriveKind.CYLINDER else "force"
+        return Balance(link=drive.link, kind=kind, given=False)
+    if not isinstance(table, Mapping):
+        raise SceneError("[balance] must be a table: moment_on = \"1\", or force_on = \"1\" with at and angle",
+                         key="balance")
+    extra = sorted(str(k) for k in set(table) - {"moment_on", "force_on", "at", "angle"})
+    if extra:
+        raise SceneError(f"unknown key {extra[0]!r}; [balance] has moment_on, or force_on with at and angle",
+                         key=f"balance.{extra[0]}")
+    if ("moment_on" in table) == ("force_on" in table):
+        raise SceneError("give one balancing element: moment_on = \"1\" (a moment on the driving link) or "
+                         "force_on = \"1\" with at and angle", key="balance")
+    which = "moment_on" if "moment_on" in table else "force_on"
+    link = _link_ref(table[which], f"balance.{which}", links)
+    if link != drive.link:
+        raise SceneError(f"the balancing element belongs on the driving link {drive.link}, not on link {link}",
+                         key=f"balance.{which}")
+    if which == "moment_on":
+        for k in ("at", "angle"):
+            if k in table:
+                raise SceneError(f"{k} places a balancing force; a moment has none: remove it", key=f"balance.{k}")
+        if not drive.kind.angular:
+            raise SceneError(f"link {link} slides and cannot turn, so a moment on it balances nothing: use "
+                             "force_on with at and angle (the force along the guide)", key="balance.moment_on")
+        return Balance(link=link, kind="moment")
+    for k in ("at", "angle"):
+        if k not in table:
+            raise SceneError(f"a balancing force needs at (a point of link {link}) and angle (°, its line in the "
+                             "sketch, turning with the link)", key=f"balance.{k}")
+    at = _point_of(table["at"], "balance.at", link, links)
+    angle = _number(table["angle"], "balance.angle", bound=MAX_ANGLE_DEG, why="°")
+    return Balance(link=link, kind="force", at=at, angle=angle)

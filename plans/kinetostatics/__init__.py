@@ -1,0 +1,9 @@
+"""Kinetostatics: inertia loads, the reactions of every pair group by group, the balancing
+element, and the power balance that checks it. Numeric, vectorised over positions; reads a
+solved :class:`~plans.kinematics.Motion` and never draws."""
+
+from .loads import Couple, Load, applied_loads
+from .solve import Balancing, Forces, ForceTerm, GroupForces, Reaction, solve_forces
+
+__all__ = ["Couple", "Load", "applied_loads", "Balancing", "Forces", "ForceTerm", "GroupForces", "Reaction",
+           "solve_forces"]
