@@ -26,10 +26,12 @@ from .constructions import Scales, acceleration_plan, choose_scales, scheme, unc
 from .constructions.plans import Plan, PlanPoint
 from .constructions.scales import extent_of
 from .constructions.centres import centres_sheet
+from .constructions.kinetostatics import group_force_plans, lever, lever_plan_scale, lever_value
 from .constructions.koshel import fit_segment, koshel_sheet
 from .constructions.cycle import positions_sheet, velocities_sheet
 from .constructions.diagrams import diagrams
 from .drawing import Heading, Style, draw_centres, draw_plan, draw_scheme
+from .drawing.forces import draw_force_plans, draw_lever
 from .drawing.koshel import draw_koshel
 from .drawing.diagrams import draw_diagrams
 from .drawing.positions import draw_positions, draw_velocities
@@ -296,6 +298,57 @@ def _forces_at(scene: Scene, forces: Forces, i: int) -> dict:
     return out
 
 
+#: The lever's balancing element must equal the group-by-group one to this fraction of the
+#: lever's largest load moment (both are exact; the difference is rounding).
+LEVER_RTOL = 1e-9
+
+
+def _force_sheets(scene: Scene, motion: Motion, forces: Forces, scales: Scales, own, stem: str, style: Style,
+                  path: str) -> dict[str, str]:
+    """The force-plan sheets (``-forces``; ``-forces-2`` … when one A3 sheet does not hold
+    them) and Zhukovsky's lever (``-lever``) at the positions drawn on their own."""
+    files: dict[str, str] = {}
+    for i in own:
+        sfx = _suffix(motion, i)
+        label = _position_label(motion, i)
+        if "forces" in scene.draw:
+            sheets = draw_force_plans(group_force_plans(forces, i), Heading(scene.title, "Force plans", label),
+                                      ident=f"forces{sfx or ''}", style=style)
+            for k, svg in enumerate(sheets):
+                files[f"{stem}-forces{sfx}{'' if k == 0 else f'-{k + 1}'}.svg"] = svg
+        if "lever" in scene.draw and scales.mu_v is not None:
+            result = _lever_at(motion, forces, i, scales.mu_v, path)
+            files[f"{stem}-lever{sfx}.svg"] = draw_lever(result, Heading(scene.title, "Zhukovsky's lever", label),
+                                                         ident=f"lever{sfx or ''}", style=style)
+    return files
+
+
+def _lever_at(motion: Motion, forces: Forces, i: int, mu_v: float, path: str):
+    """The lever at position i, checked against the group-by-group balancing element."""
+    plan = velocity_plan(motion, i, mu_v)
+    mu = lever_plan_scale(plan)
+    result = lever(motion, forces, i, plan if mu == mu_v else velocity_plan(motion, i, mu))
+    scale = max([abs(f.moment) for f in result.forces] + [0.0]) / abs(result.unit_moment) \
+        if result.unit_moment else 0.0
+    if abs(result.result - float(forces.balance.value[i])) > LEVER_RTOL * max(scale, abs(result.result)):
+        raise PlansError(f"{path}: Zhukovsky's lever gives {result.result:.12g} at {motion.values[i]:g}, the "
+                         f"group-by-group analysis {float(forces.balance.value[i]):.12g} (please report this scene)")
+    return result
+
+
+def _lever_report(motion: Motion, forces: Forces, i: int, mu_v: float, path: str) -> dict:
+    """``lever`` (the balancing element found on Zhukovsky's lever) and ``agreement``: the
+    relative differences of the lever's and the power balance's figures from the
+    group-by-group one."""
+    result = _lever_at(motion, forces, i, mu_v, path)
+    value = float(forces.balance.value[i])
+    ref = max(abs(value), 1e-300)
+    power = None if forces.power is None else float(forces.power[i])
+    return {"lever": lever_value(result, forces, i),
+            "agreement": {"lever": abs(result.result - value) / ref,
+                          "power": None if power is None else abs(power - value) / ref}}
+
+
 def _no_negative_zero(data):
     """``data`` with every -0.0 written as 0.0 (a zero's sign is rounding, not information)."""
     if isinstance(data, float):
@@ -414,7 +467,12 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
             sym = "μ_V" if kind == "velocity" else "μ_a"
             files[f"{stem}-{kind}{sfx}.svg"] = draw_plan(plan, heading, ident=f"{kind}{sfx or ''}", style=style,
                                                          notes=tuple(n for n in scales.notes if n.startswith(sym)))
+    if forces is not None and {"forces", "lever"} & set(scene.draw):
+        files.update(_force_sheets(scene, motion, forces, scales, own, stem, style, path))
     data = report(scene, motion, scales, forces)
+    if forces is not None and "lever" in scene.draw and not rest[0]:
+        for i, pos in enumerate(data["positions"]):
+            pos["forces"].update(_lever_report(motion, forces, i, scales.mu_v, path))
     if cycle is not None:
         sheets, data["cycle"] = _cycle_sheets(scene, cycle, scales, stem, style)
         files.update(sheets)

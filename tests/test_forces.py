@@ -356,3 +356,54 @@ def test_a_moment_cannot_balance_a_slider_drive():
     data["balance"] = {"moment_on": data["drive"]["link"]}
     with pytest.raises(PlansError, match=r"\[balance.moment_on\].*cannot turn"):
         parse_scene(data)
+
+
+# --- Zhukovsky's lever: the third figure ---------------------------------------------------------
+
+def _three_figures(sheets) -> tuple[float, float]:
+    """The largest differences, relative to the largest |balancing figure|, of the lever's and
+    the power balance's figures from the group-by-group one, at every position of ``sheets``."""
+    from plans.constructions import velocity_plan
+    from plans.constructions.kinetostatics import lever
+
+    f = sheets.forces
+    gbg = f.balance.value
+    ref = float(np.max(np.abs(gbg)))
+    levers = []
+    for i in range(len(sheets.motion)):
+        result = lever(sheets.motion, f, i, velocity_plan(sheets.motion, i, sheets.scales.mu_v))
+        levers.append(abs(result.result - gbg[i]))
+    power = float(np.max(np.abs(f.power - gbg))) if f.power is not None else 0.0
+    return max(levers, default=0.0) / ref, power / ref
+
+
+@pytest.mark.parametrize("path", EXAMPLES, ids=lambda p: p.stem)
+def test_lever_power_and_groups_agree_on_every_example(path):
+    """Random loads on every example (all class II forms, class III/IV, the drives): the
+    balancing figure read off Zhukovsky's lever (moments about the pole of the turned velocity
+    plan), the power balance and the group-by-group analysis agree to 1e-9 at every position."""
+    data = random_loads(data_of(path), seed=3)
+    data["plans"]["draw"] = sorted(set(data["plans"].get("draw", [])) | {"velocity", "forces"})
+    sheets = render(data)
+    if sheets.forces.power is None:
+        pytest.skip("no lever: the drive stands")
+    lever_diff, power_diff = _three_figures(sheets)
+    assert lever_diff < RTOL and power_diff < RTOL
+
+
+def test_lever_agrees_over_a_whole_turn_of_the_crank_slider():
+    data = data_of(next(p for p in LOADED if p.stem == "crank_slider_forces"))
+    data["drive"]["angle"] = [float(k) for k in range(360)]
+    data["plans"] = {"draw": ["velocity", "forces"]}
+    lever_diff, power_diff = _three_figures(render(data))
+    assert lever_diff < RTOL and power_diff < RTOL
+
+
+def test_the_report_gives_the_three_figures_and_their_agreement():
+    sheets = render(data_of(next(p for p in LOADED if p.stem == "crank_slider_forces")))
+    for pos in sheets.report["positions"]:
+        f = pos["forces"]
+        assert f["lever"]["value"] == pytest.approx(f["balance"]["value"], rel=RTOL)
+        assert f["power"]["value"] == pytest.approx(f["balance"]["value"], rel=RTOL)
+        assert f["agreement"]["lever"] < RTOL and f["agreement"]["power"] < RTOL
+    assert any(s.name.startswith("lever") for s in sheets) and any(s.name.startswith("forces") for s in sheets)

@@ -69,7 +69,8 @@ def _sub(text: str) -> str:
 def symbol(quantity: str) -> str:
     """The printed name of a force tag, in label markup: ``R:1-2`` → R₁₂, ``R:1-2:n`` → R₁₂,ₙ,
     ``R:1-2:t`` → R₁₂,τ, ``G:3`` → G₃, ``F:in:2`` → F_in,2, ``F:ext:B`` → F_B, ``F:bal`` →
-    F_bal, ``M:2`` → M₂, a couple's force ``F:M:2:a`` → F′₂ (at a)."""
+    F_bal, ``M:2`` → M₂, ``M:in:2`` → M_in,2, ``M:ext:2`` → M₂, a couple's force ``F:M:2:a``
+    (``F:M:ext:2:a``) → F′₂ (at a), ``F:M:in:2:a`` → F′_in,2."""
     parts = quantity.split(":")
     base, comp = component_of(quantity)
     if base.startswith("R:") and "-" in base:
@@ -82,8 +83,11 @@ def symbol(quantity: str) -> str:
         return f"F_{_sub('in,' + parts[2])}"
     if len(parts) == 3 and parts[:2] == ["F", "ext"]:
         return f"F_{_sub(parts[2])}"
-    if len(parts) == 4 and parts[:2] == ["F", "M"]:
-        return f"F′_{_sub(parts[2])}"
+    if len(parts) == 3 and parts[0] == "M":                 # M:in:2, M:ext:2 (the force analysis' tags)
+        return f"M_{_sub(('in,' if parts[1] == 'in' else '') + parts[2])}"
+    if len(parts) >= 4 and parts[:2] == ["F", "M"]:          # a couple's force: F:M:2:a, F:M:in:2:a
+        which = parts[2:-1]
+        return f"F′_{_sub(('in,' if which[0] == 'in' else '') + which[-1])}"
     return quantity.replace("_", " ")
 
 
@@ -91,6 +95,8 @@ def _number(v: float, digits: int = 4) -> str:
     """``v`` with ``digits`` significant figures, no exponent below 10^7, − for minus."""
     if v == 0 or not math.isfinite(v):
         return "0" if v == 0 else str(v)
+    if abs(v) < 1e-3:                          # a rounding zero or a tiny value: in powers of ten
+        return f"{v:.{digits - 1}e}".replace("-", "−")
     v = float(f"{v:.{digits}g}")               # rounded first: 9.99996 → 10.00, not 10.000
     places = max(0, digits - 1 - int(math.floor(math.log10(abs(v)))))
     s = f"{v:.{places}f}" if abs(v) < 1e7 else f"{v:.{digits - 1}e}"
@@ -279,6 +285,14 @@ def _force_layers(dwg, canvas: Canvas, plan: ForcePlan, ident: str, style: Style
     def vertex(xy) -> str | None:
         return next((p.label for p in plan.points if math.dist(p.xy, xy) <= 1e-9), None)
 
+    # the vertices' labels are asked for first: each must sit by its point, while a side's label
+    # may go anywhere beside its side
+    for k, p in enumerate(plan.points):
+        canvas.circle(labels, p.xy, 0.45, filled=True, id=f"{ident}-d{k}")
+        away = np.subtract(p.xy, centre)
+        canvas.label(labels, p.xy, _markup(p.label), size=style.small_text + 0.5,
+                     prefer=away if np.linalg.norm(away) > 1e-9 else (0.6, 0.8), ident=f"{ident}-l{k}",
+                     digits=False, near=0.5)
     for k, v in enumerate(plan.vectors):
         if v.role == "internal":
             el = _dashed_vector(canvas, g, v.tail, v.head, style.colour, f"{ident}-v{k}", f"{ident}-h{k}", style)
@@ -296,12 +310,6 @@ def _force_layers(dwg, canvas: Canvas, plan: ForcePlan, ident: str, style: Style
         canvas.label(labels, mid, symbol(v.quantity), size=style.text,
                      prefer=_side_label_direction(v.tail, v.head, centre), ident=f"{ident}-vl{k}", digits=False,
                      fill=colour, near=0.4)
-    for k, p in enumerate(plan.points):
-        canvas.circle(labels, p.xy, 0.45, filled=True, id=f"{ident}-d{k}")
-        away = np.subtract(p.xy, centre)
-        canvas.label(labels, p.xy, _markup(p.label), size=style.small_text + 0.5,
-                     prefer=away if np.linalg.norm(away) > 1e-9 else (0.6, 0.8), ident=f"{ident}-l{k}",
-                     digits=False, near=0.5)
     g.add(labels)
     dwg.add(g)
 
