@@ -42,7 +42,7 @@ import numpy as np
 from ..errors import PlansError, SceneError
 from ..kinematics.state import J, Motion, cross
 from ..model import Prismatic
-from ..scene import FRAME, DriveKind, Scene
+from ..scene import FRAME, Scene
 from ..structure import ComplexGroup, DrivenGroup, Group, Pair
 from .loads import Couple, Load, applied_loads, force_sum, moment_about
 
