@@ -13,15 +13,14 @@ position, and the table of |v| of the points and ω of the links at every positi
 
 from __future__ import annotations
 
-import math
 
 import numpy as np
 
 from ..constructions.cycle import GRID_MM, TABLE_ROW_MM, PositionsSheet, VelocitiesSheet
-from ..constructions.scheme import BLOCK_MM, Scheme
+from ..constructions.scheme import Scheme
 from .canvas import Canvas, fmt
 from .marks import bounds, markup
-from .scheme import _hatch
+from .scheme import block_corners, frame_guide, support
 from .sheet import FORMATS, TitleBlock, choose_format, new_sheet, note_lines
 from .style import Style
 from .svg import Heading, plan_layers
@@ -37,25 +36,13 @@ NOTE_ROOM_MM = 12.0
 
 def _frame_parts(canvas: Canvas, g, sch: Scheme, ident: str, style: Style) -> None:
     """The frame's guides (hatched) and supports, once."""
-    thin = fmt(style.thin, 3)
     for k, gd in enumerate(sch.guides):
         if not gd.fixed:
             continue
         canvas.line(g, gd.start, gd.end, width=style.vector, stroke_width=fmt(style.vector, 3), id=f"{ident}-guide{k}")
-        off = BLOCK_MM[1] / 2
-        u = np.subtract(gd.end, gd.start) / np.linalg.norm(np.subtract(gd.end, gd.start))
-        n = np.array([-u[1], u[0]])
-        a, b = np.add(gd.start, -off * n), np.add(gd.end, -off * n)
-        canvas.line(g, a, b, width=style.vector, stroke_width=fmt(style.vector, 3), id=f"{ident}-gb{k}")
-        canvas.strokes(g, _hatch(a, b, -1.0, style), stroke_width=thin, id=f"{ident}-gh{k}")
+        frame_guide(canvas, g, gd, k, ident, style)
     for k, p in enumerate(sch.supports):
-        c = np.asarray(sch.points[p])
-        s = style.support_size
-        canvas.polygon(g, [c, c + (-s / 2, -s), c + (s / 2, -s)], width=style.vector, fill="#fff",
-                       stroke_width=fmt(style.vector, 3), id=f"{ident}-sup{k}")
-        a, b = c + (-s, -s), c + (s, -s)
-        canvas.line(g, a, b, width=style.vector, stroke_width=fmt(style.vector, 3), id=f"{ident}-supb{k}")
-        canvas.strokes(g, _hatch(a, b, -1.0, style), stroke_width=thin, id=f"{ident}-suph{k}")
+        support(canvas, g, sch.points[p], k, ident, style)
 
 
 def _pose(canvas: Canvas, g, sch: Scheme, ident: str, w: float, style: Style, pins: bool = True) -> None:
@@ -73,11 +60,7 @@ def _pose(canvas: Canvas, g, sch: Scheme, ident: str, w: float, style: Style, pi
     for b in sch.blocks:
         if b.pin is not None:
             canvas.line(g, b.pin, b.center, width=w, stroke_width=sw, id=f"{ident}-rod{b.link}")
-        u = np.array([math.cos(math.radians(b.angle)), math.sin(math.radians(b.angle))])
-        n = np.array([-u[1], u[0]])
-        hl, hw = BLOCK_MM[0] / 2, BLOCK_MM[1] / 2
-        corners = [np.add(b.center, sx * hl * u + sy * hw * n) for sx, sy in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
-        canvas.polygon(g, corners, width=w, fill="none", stroke_width=sw, id=f"{ident}-block{b.link}")
+        canvas.polygon(g, block_corners(b), width=w, fill="none", stroke_width=sw, id=f"{ident}-block{b.link}")
     if pins:
         for k, p in enumerate(sch.joints):
             if p in sch.supports:

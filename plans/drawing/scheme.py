@@ -65,11 +65,39 @@ def _draw_arc(canvas: Canvas, g, labels, arc: Arc, ident: str, style: Style) -> 
                  ident=f"{key}{arc.link}l", digits=False, near=0.5)
 
 
+def frame_guide(canvas: Canvas, g, gd, k: int, ident: str, style: Style) -> None:
+    """The hatched ground line of frame guide ``gd`` (its ``k``-th), half a block below it."""
+    off = BLOCK_MM[1] / 2
+    u = np.subtract(gd.end, gd.start) / np.linalg.norm(np.subtract(gd.end, gd.start))
+    n = np.array([-u[1], u[0]])
+    a, b = np.add(gd.start, -off * n), np.add(gd.end, -off * n)
+    canvas.line(g, a, b, width=style.vector, stroke_width=fmt(style.vector, 3), id=f"{ident}-gb{k}")
+    canvas.strokes(g, _hatch(a, b, -1.0, style), stroke_width=fmt(style.thin, 3), id=f"{ident}-gh{k}")
+
+
+def support(canvas: Canvas, g, xy, k: int, ident: str, style: Style) -> None:
+    """A frame pivot at ``xy`` (mm; the ``k``-th): a triangle on a hatched ground line."""
+    c = np.asarray(xy)
+    s = style.support_size
+    canvas.polygon(g, [c, c + (-s / 2, -s), c + (s / 2, -s)], width=style.vector, fill="#fff",
+                   stroke_width=fmt(style.vector, 3), id=f"{ident}-sup{k}")
+    a, b = c + (-s, -s), c + (s, -s)
+    canvas.line(g, a, b, width=style.vector, stroke_width=fmt(style.vector, 3), id=f"{ident}-supb{k}")
+    canvas.strokes(g, _hatch(a, b, -1.0, style), stroke_width=fmt(style.thin, 3), id=f"{ident}-suph{k}")
+
+
+def block_corners(b) -> list[np.ndarray]:
+    """The four corners (mm) of slider block ``b``, BLOCK_MM long along its guide."""
+    u = np.array([math.cos(math.radians(b.angle)), math.sin(math.radians(b.angle))])
+    n = np.array([-u[1], u[0]])
+    hl, hw = BLOCK_MM[0] / 2, BLOCK_MM[1] / 2
+    return [np.add(b.center, sx * hl * u + sy * hw * n) for sx, sy in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
+
+
 def scheme_layers(dwg, canvas: Canvas, sch: Scheme, ident: str, style: Style) -> None:
     g = dwg.g(id=f"{ident}-scheme", stroke=style.colour, fill="none", stroke_linecap="round")
     g.attribs["data-mu"] = repr(sch.mu_l)
     g.attribs["data-plan"] = "scheme"
-    thin = fmt(style.thin, 3)
     link_w = fmt(style.link, 3)
     for k, gd in enumerate(sch.guides):
         w = style.link if not gd.fixed else style.vector
@@ -77,12 +105,7 @@ def scheme_layers(dwg, canvas: Canvas, sch: Scheme, ident: str, style: Style) ->
         if gd.stem is not None:   # the slot is rigid with its link: one piece, as a yoke
             canvas.line(g, gd.stem[0], gd.stem[1], width=style.link, stroke_width=link_w, id=f"{ident}-stem{k}")
         if gd.fixed:
-            off = BLOCK_MM[1] / 2
-            u = np.subtract(gd.end, gd.start) / np.linalg.norm(np.subtract(gd.end, gd.start))
-            n = np.array([-u[1], u[0]])
-            a, b = np.add(gd.start, -off * n), np.add(gd.end, -off * n)
-            canvas.line(g, a, b, width=style.vector, stroke_width=fmt(style.vector, 3), id=f"{ident}-gb{k}")
-            canvas.strokes(g, _hatch(a, b, -1.0, style), stroke_width=thin, id=f"{ident}-gh{k}")
+            frame_guide(canvas, g, gd, k, ident, style)
     plates = [(name, pts) for name, pts in sch.links if len(pts) >= 3]
     bars = [(name, pts) for name, pts in sch.links if len(pts) == 2]
     for name, pts in plates:   # plates first: bars pinned to them are drawn over their fill
@@ -95,22 +118,13 @@ def scheme_layers(dwg, canvas: Canvas, sch: Scheme, ident: str, style: Style) ->
         if b.pin is not None:   # a block moved off its pin: carried on a rod along its guide
             canvas.line(g, b.pin, b.center, width=style.link, stroke_width=link_w, id=f"{ident}-rod{b.link}")
     for b in sch.blocks:
-        u = np.array([math.cos(math.radians(b.angle)), math.sin(math.radians(b.angle))])
-        n = np.array([-u[1], u[0]])
-        hl, hw = BLOCK_MM[0] / 2, BLOCK_MM[1] / 2
-        corners = [np.add(b.center, sx * hl * u + sy * hw * n) for sx, sy in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
-        canvas.polygon(g, corners, width=style.link, fill="#fff", stroke_width=link_w, id=f"{ident}-block{b.link}")
+        canvas.polygon(g, block_corners(b), width=style.link, fill="#fff", stroke_width=link_w,
+                       id=f"{ident}-block{b.link}")
     labels = dwg.g(id=f"{ident}-labels", fill=style.colour)
     for arc in sch.arcs:   # under the supports and pins: a pin's circle covers the lines' ends
         _draw_arc(canvas, g, labels, arc, ident, style)
     for k, p in enumerate(sch.supports):
-        c = np.asarray(sch.points[p])
-        s = style.support_size
-        canvas.polygon(g, [c, c + (-s / 2, -s), c + (s / 2, -s)], width=style.vector, fill="#fff",
-                       stroke_width=fmt(style.vector, 3), id=f"{ident}-sup{k}")
-        a, b = c + (-s, -s), c + (s, -s)
-        canvas.line(g, a, b, width=style.vector, stroke_width=fmt(style.vector, 3), id=f"{ident}-supb{k}")
-        canvas.strokes(g, _hatch(a, b, -1.0, style), stroke_width=thin, id=f"{ident}-suph{k}")
+        support(canvas, g, sch.points[p], k, ident, style)
     for k, p in enumerate(sch.joints):
         canvas.circle(g, sch.points[p], style.joint_radius, filled=True, fill="#fff", stroke_width=fmt(style.vector, 3),
                       id=f"{ident}-j{k}")
