@@ -40,7 +40,7 @@ from .canvas import Canvas, fmt
 from .marks import NO_HEAD_MM, arrow as _arrow, bounds, markup as _markup
 from .sheet import FORMATS, TitleBlock, choose_format, new_sheet
 from .style import Style
-from .svg import Heading, _tag
+from .svg import Heading, _tag, plan_group
 from .text import runs, width, wrap
 
 __all__ = ["draw_force_plans", "draw_lever", "symbol", "PANEL_GAP_MM", "TABLE_TEXT_MM", "TABLE_LEAD_MM"]
@@ -268,17 +268,8 @@ def _force_sheet(placed, heading: Heading, ident: str, style: Style) -> str:
 
 def _force_layers(dwg, canvas: Canvas, plan: ForcePlan, ident: str, style: Style) -> None:
     """One polygon's group: direction lines, tagged vectors with heads, vertices and labels."""
-    g = dwg.g(id=f"{ident}-plan")
-    g.attribs["data-mu"] = repr(plan.mu)
-    g.attribs["data-plan"] = "force"
+    g = plan_group(dwg, canvas, plan, "force", ident, style)
     g.attribs["data-group"] = plan.group
-    g.attribs["data-vectors"] = str(len(plan.vectors))
-    lines = dwg.g(id=f"{ident}-construction", stroke=style.construction_colour, stroke_width=fmt(style.thin, 3),
-                  stroke_dasharray=style.dash, fill="none")
-    for k, l in enumerate(plan.lines):
-        el = canvas.line(lines, l.start, l.end, id=f"{ident}-cl{k}")
-        el.attribs["data-construction"] = l.quantity
-    g.add(lines)
     labels = dwg.g(id=f"{ident}-labels", fill=style.colour)
     centre = np.mean([p.xy for p in plan.points], axis=0)
 

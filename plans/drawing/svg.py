@@ -126,12 +126,14 @@ def draw_plan(plan: Plan, heading: Heading, *, ident: str, style: Style = Style(
     return dwg.tostring()
 
 
-def plan_layers(dwg, canvas: Canvas, plan: Plan, ident: str, style: Style) -> None:
-    """A plan's group on ``canvas``: construction lines, tagged vectors with their heads, the
-    images' dots, and label requests (placed by the caller's ``canvas.place_labels``)."""
+def plan_group(dwg, canvas: Canvas, plan, kind: str, ident: str, style: Style):
+    """The group of a plan of ``kind`` (velocity, acceleration, force …) that ``plans check``
+    reads: its scale (``data-mu``), kind and vector count, holding the plan's construction
+    lines (dashed, each tagged with the quantity it constructs). ``plan`` has ``mu``,
+    ``vectors`` and ``lines``."""
     g = dwg.g(id=f"{ident}-plan")
     g.attribs["data-mu"] = repr(plan.mu)
-    g.attribs["data-plan"] = plan.kind
+    g.attribs["data-plan"] = kind
     g.attribs["data-vectors"] = str(len(plan.vectors))
     lines = dwg.g(id=f"{ident}-construction", stroke=style.construction_colour, stroke_width=fmt(style.thin, 3),
                   stroke_dasharray=style.dash, fill="none")
@@ -139,6 +141,13 @@ def plan_layers(dwg, canvas: Canvas, plan: Plan, ident: str, style: Style) -> No
         el = canvas.line(lines, l.start, l.end, id=f"{ident}-cl{k}")
         el.attribs["data-construction"] = l.quantity
     g.add(lines)
+    return g
+
+
+def plan_layers(dwg, canvas: Canvas, plan: Plan, ident: str, style: Style) -> None:
+    """A plan's group on ``canvas``: construction lines, tagged vectors with their heads, the
+    images' dots, and label requests (placed by the caller's ``canvas.place_labels``)."""
+    g = plan_group(dwg, canvas, plan, plan.kind, ident, style)
     for k, v in enumerate(plan.vectors):
         colour = style.vector_colour if v.kind in ("absolute", "relative") else style.component_colour
         el = _vector(canvas, g, v.tail, v.head, colour, f"{ident}-v{k}", f"{ident}-h{k}", style)
