@@ -255,8 +255,7 @@ def _direct(mech: Mechanism, structure: Structure, values: np.ndarray, pre: dict
     then the walk through every value (:func:`_positions`) would choose the same branch and
     refuse nothing, and its poses at the values are these, to the last bit. None (the full
     walk decides, and reports any failure) when a check fails or a group is of class III/IV."""
-    if values.ndim != 1 or not values.size or not np.all(np.isfinite(values)) \
-            or structure.driven is not None or any(isinstance(g, ComplexGroup) for g in structure.groups):
+    if not _direct_applies(structure, values):
         return None
     start = _start(mech, values)
     ends = np.array([values.min(), values.max()])
@@ -285,7 +284,7 @@ def _direct(mech: Mechanism, structure: Structure, values: np.ndarray, pre: dict
             _check_crossing(mech, g, walk_sin, grid, sweeps, ends)
         except AssemblyError:
             return None
-        if not np.all((np.abs(sin) >= SINGULAR_SIN) & (np.sign(sin) == np.sign(walk_sin[before]))):
+        if not _clear_of_singular(sin, walk_sin[before]):
             return None
         kept[g.name] = keep
         sin_at[g.name] = sin
@@ -295,6 +294,19 @@ def _direct(mech: Mechanism, structure: Structure, values: np.ndarray, pre: dict
             pre[name] = {"geo": {key: v[at] for key, v in keep["geo"].items()},
                          "U1": keep["U1"][at], "U2": keep["U2"][at], "sin": sin_at[name]}
     return {name: s.take(at) for name, s in states.items()}
+
+
+def _direct_applies(structure: Structure, values: np.ndarray) -> bool:
+    """Whether the direct path may answer: finite values (a 1-D, non-empty array) of a
+    mechanism of class II groups only (no class III/IV group, no drive inside the chain)."""
+    return bool(values.ndim == 1 and values.size and np.all(np.isfinite(values))) \
+        and structure.driven is None and not any(isinstance(g, ComplexGroup) for g in structure.groups)
+
+
+def _clear_of_singular(sin: np.ndarray, walk_sin: np.ndarray) -> bool:
+    """Every value well away from a singular position (|sin| ≥ SINGULAR_SIN) and on the side
+    of the walk's step before it (the same sign of sin): no singular position between them."""
+    return bool(np.all((np.abs(sin) >= SINGULAR_SIN) & (np.sign(sin) == np.sign(walk_sin))))
 
 
 def _steps_before(grid: np.ndarray, sweeps: list[np.ndarray], start: float, values: np.ndarray) -> np.ndarray:
@@ -329,8 +341,7 @@ def _direct_plan(mech: Mechanism, structure: Structure, values: np.ndarray) -> _
     group solved at the walk's steps, the one the walk takes at its start kept, and assembly
     and singular crossings checked along the steps as the walk checks them. None when a check
     fails or a group is of class III/IV (then the full walk decides)."""
-    if values.ndim != 1 or not values.size or not np.all(np.isfinite(values)) \
-            or structure.driven is not None or any(isinstance(g, ComplexGroup) for g in structure.groups):
+    if not _direct_applies(structure, values):
         return None
     start = _start(mech, values)
     ends = np.array([values.min(), values.max()])
@@ -375,7 +386,7 @@ def _direct_block(mech: Mechanism, structure: Structure, plan: _Plan, values: np
         states[g.m], states[g.n] = option.m, option.n
         keep: dict = {}
         sin = conditioning(g, mech, states, keep)
-        if not np.all((np.abs(sin) >= SINGULAR_SIN) & (np.sign(sin) == np.sign(plan.walk_sin[g.name][before]))):
+        if not _clear_of_singular(sin, plan.walk_sin[g.name][before]):
             return None
         kept[g.name] = {"geo": keep["geo"], "U1": keep["U1"], "U2": keep["U2"], "sin": sin}
     return states, kept
