@@ -28,7 +28,6 @@ from ..model import Mechanism
 from ..scene import DriveKind
 from ..structure import DrivenGroup
 from .generic import GroupEquations, States, _dot
-from .state import J
 
 __all__ = ["DrivenEquations"]
 
@@ -64,16 +63,16 @@ class DrivenEquations(GroupEquations):
 
     # -- the drive's row -------------------------------------------------------------------
     def _slide(self, states: States):
+        """The cylinder's pair, its anchors' world points and the guide's direction u now."""
         p = self.drive.guide
-        s, g = states[p.slider], states[p.guide]
-        xs, yg = s.point(p.anchor[p.slider]), g.point(p.anchor[p.guide])
-        return s, g, xs, yg, g.direction(p.direction)
+        xs, yg = states[p.slider].point(p.anchor[p.slider]), states[p.guide].point(p.anchor[p.guide])
+        return p, xs, yg, states[p.guide].direction(p.direction)
 
     def residual(self, states: States) -> np.ndarray:
         if self.angular:
             row = states[self.drive.link].theta - self.target
         else:
-            _, _, xs, yg, u = self._slide(states)
+            _, xs, yg, u = self._slide(states)
             row = _dot(xs - yg, u) - self.target
         return np.column_stack([super().residual(states), row])
 
@@ -83,39 +82,24 @@ class DrivenEquations(GroupEquations):
         if self.angular:
             row[:, 0, self.col[self.drive.link] + 2] = 1.0
         else:
-            p = self.drive.guide
-            s, g, xs, yg, u = self._slide(states)
-            if p.slider in self.col:
-                c = self.col[p.slider]
-                row[:, 0, c:c + 2] += u
-                row[:, 0, c + 2] += _dot(J(xs - s.origin), u)
-            if p.guide in self.col:
-                c = self.col[p.guide]
-                row[:, 0, c:c + 2] -= u
-                row[:, 0, c + 2] += -_dot(J(yg - g.origin), u) + _dot(xs - yg, J(u))
+            p, xs, yg, u = self._slide(states)
+            self._offset_jacobian(row[:, 0], p, states, xs, yg, u)
         return np.concatenate([a, row], axis=1)
 
     def velocity_terms(self, states: States) -> np.ndarray:
-        d = self.drive
-        if self.angular:
-            row = states[d.link].omega - d.speed
-        else:
-            s, g, xs, yg, u = self._slide(states)
-            row = _dot(s.velocity(xs) - g.velocity(yg), u) + g.omega * _dot(xs - yg, J(u)) - d.speed
-        return np.column_stack([super().velocity_terms(states), row])
+        return np.column_stack([super().velocity_terms(states), self._drive_rate(states, 1) - self.drive.speed])
 
     def acceleration_terms(self, states: States) -> np.ndarray:
-        d = self.drive
+        return np.column_stack([super().acceleration_terms(states), self._drive_rate(states, 2) - self.drive.rate])
+
+    def _drive_rate(self, states: States, order: int) -> np.ndarray:
+        """θ̇_c, θ̈_c of the coupler, or σ̇, σ̈ of the stroke, with the group's unknown rates of
+        that order at zero (N,)."""
         if self.angular:
-            row = states[d.link].epsilon - d.rate
-        else:
-            s, g, xs, yg, u = self._slide(states)
-            dv = s.velocity(xs) - g.velocity(yg)
-            da = s.acceleration(xs) - g.acceleration(yg)
-            w, e = g.omega, g.epsilon
-            row = _dot(da, u) + 2.0 * w * _dot(dv, J(u)) \
-                + _dot(xs - yg, e[:, None] * J(u) - (w * w)[:, None] * u) - d.rate
-        return np.column_stack([super().acceleration_terms(states), row])
+            link = states[self.drive.link]
+            return link.omega if order == 1 else link.epsilon
+        p, xs, yg, u = self._slide(states)
+        return self._offset_rate(p, states, xs, yg, u, order)
 
     def _scale_rows(self, m: np.ndarray) -> np.ndarray:
         """As for a group, and a coupler's angle row ×size too (every entry dimensionless)."""

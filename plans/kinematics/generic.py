@@ -128,16 +128,39 @@ class GroupEquations:
             p = pair.prismatic
             xs, yg, n = self._geometry(pair, states)
             if p.slider in self.col:
-                c = self.col[p.slider]
-                a[:, r, c + 2] += 1.0
-                a[:, r + 1, c:c + 2] += n
-                a[:, r + 1, c + 2] += _dot(J(xs - states[p.slider].origin), n)
+                a[:, r, self.col[p.slider] + 2] += 1.0
             if p.guide in self.col:
-                c = self.col[p.guide]
-                a[:, r, c + 2] -= 1.0
-                a[:, r + 1, c:c + 2] -= n
-                a[:, r + 1, c + 2] += -_dot(J(yg - states[p.guide].origin), n) + _dot(xs - yg, J(n))
+                a[:, r, self.col[p.guide] + 2] -= 1.0
+            self._offset_jacobian(a[:, r + 1], p, states, xs, yg, n)
         return a
+
+    # -- the offset of a slider's point along a direction turning with its guide ---------
+    # Φ = (X_s − Y_g)·d_g: a prismatic pair's second equation (d = its normal n) and a
+    # cylinder's stroke (d = the guide's direction u, kinematics/drives.py); one set of terms.
+    def _offset_jacobian(self, row: np.ndarray, p, states: States, xs: np.ndarray, yg: np.ndarray,
+                         d: np.ndarray) -> None:
+        """Add ∂Φ/∂q of Φ = (X_s − Y_g)·d into ``row`` (N, 3k), in place."""
+        if p.slider in self.col:
+            c = self.col[p.slider]
+            row[:, c:c + 2] += d
+            row[:, c + 2] += _dot(J(xs - states[p.slider].origin), d)
+        if p.guide in self.col:
+            c = self.col[p.guide]
+            row[:, c:c + 2] -= d
+            row[:, c + 2] += -_dot(J(yg - states[p.guide].origin), d) + _dot(xs - yg, J(d))
+
+    @staticmethod
+    def _offset_rate(p, states: States, xs: np.ndarray, yg: np.ndarray, d: np.ndarray, order: int) -> np.ndarray:
+        """Φ̇ (``order`` 1) or Φ̈ (2) of Φ = (X_s − Y_g)·d with the unknown rates of that order
+        at zero (N,): Φ̇ = (V_s − V_g)·d + ω_g (X_s − Y_g)·k×d, Φ̈ = (A_s − A_g)·d
+        + 2ω_g (V_s − V_g)·k×d + (X_s − Y_g)·(ε_g k×d − ω_g² d)."""
+        s, g = states[p.slider], states[p.guide]
+        dv = s.velocity(xs) - g.velocity(yg)
+        w = g.omega
+        if order == 1:
+            return _dot(dv, d) + w * _dot(xs - yg, J(d))
+        da = s.acceleration(xs) - g.acceleration(yg)
+        return _dot(da, d) + 2.0 * w * _dot(dv, J(d)) + _dot(xs - yg, g.epsilon[:, None] * J(d) - (w * w)[:, None] * d)
 
     def velocity_terms(self, states: States) -> np.ndarray:
         """Φ̇ with the group's rates (v_o, ω) set to zero (N, 2·pairs)."""
@@ -148,10 +171,9 @@ class GroupEquations:
                 rows.append(states[pair.a].velocity(xa) - states[pair.b].velocity(xa))
                 continue
             p = pair.prismatic
-            s, g = states[p.slider], states[p.guide]
             xs, yg, n = self._geometry(pair, states)
-            dv = s.velocity(xs) - g.velocity(yg)
-            rows.append(np.column_stack([s.omega - g.omega, _dot(dv, n) + g.omega * _dot(xs - yg, J(n))]))
+            rows.append(np.column_stack([states[p.slider].omega - states[p.guide].omega,
+                                         self._offset_rate(p, states, xs, yg, n, 1)]))
         return np.concatenate(rows, axis=1)
 
     def acceleration_terms(self, states: States) -> np.ndarray:
@@ -163,13 +185,9 @@ class GroupEquations:
                 rows.append(states[pair.a].acceleration(xa) - states[pair.b].acceleration(xa))
                 continue
             p = pair.prismatic
-            s, g = states[p.slider], states[p.guide]
             xs, yg, n = self._geometry(pair, states)
-            dv = s.velocity(xs) - g.velocity(yg)
-            da = s.acceleration(xs) - g.acceleration(yg)
-            w, e = g.omega, g.epsilon
-            second = _dot(da, n) + 2.0 * w * _dot(dv, J(n)) + _dot(xs - yg, e[:, None] * J(n) - (w * w)[:, None] * n)
-            rows.append(np.column_stack([s.epsilon - g.epsilon, second]))
+            rows.append(np.column_stack([states[p.slider].epsilon - states[p.guide].epsilon,
+                                         self._offset_rate(p, states, xs, yg, n, 2)]))
         return np.concatenate(rows, axis=1)
 
     # -- conditioning --------------------------------------------------------------------
