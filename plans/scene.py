@@ -15,7 +15,7 @@ import tomllib
 from enum import StrEnum
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any, Iterator, Mapping
 
 from .errors import SceneError
 
@@ -855,21 +855,30 @@ def _masses(table: Mapping[str, Any], links: Mapping[str, tuple[str, ...]]) -> d
     return out
 
 
-def _forces(items: Any, links: Mapping[str, tuple[str, ...]]) -> tuple[AppliedForce, ...]:
+def _load_entries(items: Any, name: str, allowed: set[str], required: tuple[str, ...], has: str,
+                  needs: str) -> Iterator[tuple[int, str, Mapping[str, Any]]]:
+    """The entries of an array of tables ``[[name]]`` (index, key, table), each checked for
+    unknown keys (``has`` says what an entry has) and the ``required`` ones (``needs``)."""
     if not isinstance(items, list):
-        raise SceneError("forces must be an array of tables [[forces]]", key="forces")
-    out = []
+        raise SceneError(f"{name} must be an array of tables [[{name}]]", key=name)
     for i, item in enumerate(items):
-        key = f"forces[{i}]"
+        key = f"{name}[{i}]"
         if not isinstance(item, Mapping):
-            raise SceneError("each [[forces]] entry must be a table", key=key)
-        extra = sorted(str(k) for k in set(item) - {"link", "at", "vector", "magnitude", "angle"})
+            raise SceneError(f"each [[{name}]] entry must be a table", key=key)
+        extra = sorted(str(k) for k in set(item) - allowed)
         if extra:
-            raise SceneError(f"unknown key {extra[0]!r}; a force has link, at, and vector or magnitude with angle",
-                             key=f"{key}.{extra[0]}")
-        for k in ("link", "at"):
+            raise SceneError(f"unknown key {extra[0]!r}; {has}", key=f"{key}.{extra[0]}")
+        for k in required:
             if k not in item:
-                raise SceneError(f"missing {k!r}; a force needs link, at, and vector = [Fx, Fy] (N)", key=key)
+                raise SceneError(f"missing {k!r}; {needs}", key=key)
+        yield i, key, item
+
+
+def _forces(items: Any, links: Mapping[str, tuple[str, ...]]) -> tuple[AppliedForce, ...]:
+    out = []
+    for i, key, item in _load_entries(items, "forces", {"link", "at", "vector", "magnitude", "angle"}, ("link", "at"),
+                                      "a force has link, at, and vector or magnitude with angle",
+                                      "a force needs link, at, and vector = [Fx, Fy] (N)"):
         link = _moving_link(item["link"], f"{key}.link", links, "a force")
         at = _point_of(item["at"], f"{key}.at", link, links)
         if "vector" in item:
@@ -890,20 +899,10 @@ def _forces(items: Any, links: Mapping[str, tuple[str, ...]]) -> tuple[AppliedFo
 
 
 def _moments(items: Any, links: Mapping[str, tuple[str, ...]]) -> tuple[AppliedMoment, ...]:
-    if not isinstance(items, list):
-        raise SceneError("moments must be an array of tables [[moments]]", key="moments")
     out = []
-    for i, item in enumerate(items):
-        key = f"moments[{i}]"
-        if not isinstance(item, Mapping):
-            raise SceneError("each [[moments]] entry must be a table", key=key)
-        extra = sorted(str(k) for k in set(item) - {"link", "value"})
-        if extra:
-            raise SceneError(f"unknown key {extra[0]!r}; a moment has link and value (N·m, CCW positive)",
-                             key=f"{key}.{extra[0]}")
-        for k in ("link", "value"):
-            if k not in item:
-                raise SceneError(f"missing {k!r}; a moment needs link and value (N·m, CCW positive)", key=key)
+    for i, key, item in _load_entries(items, "moments", {"link", "value"}, ("link", "value"),
+                                      "a moment has link and value (N·m, CCW positive)",
+                                      "a moment needs link and value (N·m, CCW positive)"):
         link = _moving_link(item["link"], f"{key}.link", links, "a moment")
         out.append(AppliedMoment(link=link, value=_number(item["value"], f"{key}.value", bound=MAX_LOAD, why=" N·m"),
                                  index=i))
