@@ -106,24 +106,14 @@ def _graph(dwg, canvas: Canvas, d: Diagrams, g: Graph, ident: str, style: Style,
     curve = canvas.polyline(grp, g.exact, width=style.vector, stroke_width=vec, id=f"{ident}-exact",
                             stroke=style.vector_colour)
     curve.attribs["data-kind"] = "exact"
-    dots = dwg.g(id=f"{ident}-dots", fill=style.vector_colour, stroke="none")
-    for k, (x, y, value) in enumerate(g.at_positions):
-        el = canvas.circle(dots, (x, y), 0.55, filled=True, id=f"{ident}-e{k}")
-        el.attribs["data-kind"] = "exact"
-        el.attribs["data-value"] = repr(value)
-        el.attribs["data-t"] = repr(x * d.mu_t)
-    grp.add(dots)
+    grp.add(_dots(dwg, canvas, g.at_positions, "exact", style.vector_colour, 0.55, f"{ident}-dots", f"{ident}-e",
+                  d.mu_t))
     if g.graphical:
         chords = canvas.polyline(grp, [(x, y) for x, y, _ in g.graphical], width=style.thin, stroke_width=thin,
                                  stroke=style.component_colour, stroke_dasharray="2 1", id=f"{ident}-graphical")
         chords.attribs["data-kind"] = "graphical"
-        gd = dwg.g(id=f"{ident}-gdots", fill=style.component_colour, stroke="none")
-        for k, (x, y, value) in enumerate(g.graphical):
-            el = canvas.circle(gd, (x, y), 0.5, filled=True, id=f"{ident}-g{k}")
-            el.attribs["data-kind"] = "graphical"
-            el.attribs["data-value"] = repr(value)
-            el.attribs["data-t"] = repr(x * d.mu_t)
-        grp.add(gd)
+        grp.add(_dots(dwg, canvas, g.graphical, "graphical", style.component_colour, 0.5, f"{ident}-gdots",
+                      f"{ident}-g", d.mu_t))
     grp.add(texts)
     dwg.add(grp)
 
@@ -144,3 +134,15 @@ def _time_axis(dwg, canvas: Canvas, d: Diagrams, last: Graph, ident: str, style:
     canvas.text(texts, canvas.paper((x_end + 1.5, y - 1.2)), "t, s", size=style.text, ident=f"{ident}-time-name")
     dwg.add(g)
     dwg.add(texts)
+
+
+def _dots(dwg, canvas: Canvas, points, kind: str, colour: str, radius: float, group: str, prefix: str, mu_t: float):
+    """A group of dots at ``points`` ((x, y, value) in mm and the value's unit), each tagged with
+    its ``kind``, value and time t = x·μt (s), so that a test can read the curve back."""
+    g = dwg.g(id=group, fill=colour, stroke="none")
+    for k, (x, y, value) in enumerate(points):
+        el = canvas.circle(g, (x, y), radius, filled=True, id=f"{prefix}{k}")
+        el.attribs["data-kind"] = kind
+        el.attribs["data-value"] = repr(value)
+        el.attribs["data-t"] = repr(x * mu_t)
+    return g
