@@ -212,6 +212,12 @@ class _Geometry:
         return self.pin(pair.point) if pair.kind == "R" else self.guide(pair.prismatic)[2]
 
 
+def _split(f: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """x, y (N,) with f = x·a + y·b (Cramer's rule; a, b (N, 2) not parallel)."""
+    det = cross(a, b)
+    return cross(f, b) / det, cross(a, f) / det
+
+
 def _unit(v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     length = np.hypot(v[:, 0], v[:, 1])
     return v / length[:, None], length
@@ -310,9 +316,7 @@ class _Solver:
             else:
                 other = geo.guide(f.prismatic)[1]
                 rest = -(fm + fn + tau_d)
-            det = cross(nu_d, other)
-            n_d = cross(rest, other) / det
-            n_f = cross(nu_d, rest) / det
+            n_d, n_f = _split(rest, nu_d, other)
             norm_d = n_d[:, None] * nu_d
             r_d = tau_d + norm_d
             r_f = (tau_f if tau_f is not None else 0.0) + n_f[:, None] * other
@@ -350,9 +354,8 @@ class _Solver:
             _, nu_d, r0_d = geo.guide(d.prismatic)
             _, nu_f, r0_f = geo.guide(f.prismatic)
             rest = -(fm + fn)
-            det = cross(nu_d, nu_f)
-            r_d = (cross(rest, nu_f) / det)[:, None] * nu_d
-            r_f = (cross(nu_d, rest) / det)[:, None] * nu_f
+            a_d, a_f = _split(rest, nu_d, nu_f)
+            r_d, r_f = a_d[:, None] * nu_d, a_f[:, None] * nu_f
             r_e = -(fn + r_f)
             self.record(d, r_d, -self.msum(m, pe) - cross(r0_d - pe, r_d))
             self.record(f, r_f, -self.msum(n, pe) - cross(r0_f - pe, r_f))
@@ -363,9 +366,8 @@ class _Solver:
             pd = geo.pin(d.point)
             _, nu_e, r0_e = geo.guide(e.prismatic)
             _, nu_f, r0_f = geo.guide(f.prismatic)
-            det = cross(nu_e, nu_f)                      # link n: N_E ν_E + N_F ν_F + ΣF_n = 0
-            r_e = (cross(-fn, nu_f) / det)[:, None] * nu_e
-            r_f = (cross(nu_e, -fn) / det)[:, None] * nu_f
+            a_e, a_f = _split(-fn, nu_e, nu_f)          # link n: N_E ν_E + N_F ν_F + ΣF_n = 0
+            r_e, r_f = a_e[:, None] * nu_e, a_f[:, None] * nu_f
             r_d = r_e - fm
             mm, mn = self.msum(m, pd), self.msum(n, pd)
             t_e = mm - cross(r0_e - pd, r_e)
