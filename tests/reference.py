@@ -200,29 +200,25 @@ class Reference:
             put(r.a, slice(row, row + 2), np.eye(2), _J @ ra)
             put(r.b, slice(row, row + 2), -np.eye(2), -(_J @ rb))
             row += 2
-        for p in self.mech.prismatics:
+        def offset(p, local: np.ndarray, rows: slice) -> None:
+            """∂/∂q of (X_s − Y_g)·R(θ_g)·local: a prismatic pair's normal row, a cylinder's stroke."""
             tg = self._pose(q, p.guide)[1]
-            ng = _rot(tg) @ p.normal
+            dg = _rot(tg) @ local
             rs = _rot(self._pose(q, p.slider)[1]) @ p.anchor[p.slider]
             rg = _rot(tg) @ p.anchor[p.guide]
             d = self._world(q, p.slider, p.anchor[p.slider]) - self._world(q, p.guide, p.anchor[p.guide])
+            put(p.slider, rows, dg[None], np.array([(_J @ rs) @ dg]))
+            put(p.guide, rows, -dg[None], np.array([-(_J @ rg) @ dg + d @ (_J @ dg)]))
+
+        for p in self.mech.prismatics:
             put(p.slider, slice(row, row + 1), np.zeros((1, 2)), np.array([1.0]))
             put(p.guide, slice(row, row + 1), np.zeros((1, 2)), np.array([-1.0]))
-            put(p.slider, slice(row + 1, row + 2), ng[None], np.array([(_J @ rs) @ ng]))
-            put(p.guide, slice(row + 1, row + 2), -ng[None], np.array([-(_J @ rg) @ ng + d @ (_J @ ng)]))
+            offset(p, p.normal, slice(row + 1, row + 2))
             row += 2
-        link = self.mech.drive.link
         if self.rotary:
-            put(link, slice(row, row + 1), np.zeros((1, 2)), np.array([1.0]))
+            put(self.mech.drive.link, slice(row, row + 1), np.zeros((1, 2)), np.array([1.0]))
         else:
-            p = self.guide
-            tg = self._pose(q, p.guide)[1]
-            ug = _rot(tg) @ self.u
-            rs = _rot(self._pose(q, p.slider)[1]) @ p.anchor[p.slider]
-            rg = _rot(tg) @ p.anchor[p.guide]
-            d = self._world(q, p.slider, p.anchor[p.slider]) - self._world(q, p.guide, p.anchor[p.guide])
-            put(p.slider, slice(row, row + 1), ug[None], np.array([(_J @ rs) @ ug]))
-            put(p.guide, slice(row, row + 1), -ug[None], np.array([-(_J @ rg) @ ug + d @ (_J @ ug)]))
+            offset(self.guide, self.u, slice(row, row + 1))
         return Jac
 
     def gamma(self, q: np.ndarray, qd: np.ndarray, rate: float) -> np.ndarray:
@@ -235,28 +231,20 @@ class Reference:
             ra = _rot(ta) @ self.mech.links[r.a].local[r.point]
             rb = _rot(tb) @ self.mech.links[r.b].local[r.point]
             out += list(wa * wa * ra - wb * wb * rb)
+        def quad(p, local: np.ndarray) -> float:
+            """The terms of Φ̈ not linear in q̈, for Φ = (X_s − Y_g)·d_g, d_g = R(θ_g)·local:
+            Φ̈ = d̈·d_g + 2 ḋ·ḋ_g + d·d̈_g, ḋ_g = θ̇_g k×d_g, d̈_g = θ̈_g k×d_g − θ̇_g² d_g."""
+            (os_, ts), (og, tg) = self._pose(q, p.slider), self._pose(q, p.guide)
+            (vs, ws), (vg, wg) = self._pose(qd, p.slider), self._pose(qd, p.guide)
+            rs, rg = _rot(ts) @ p.anchor[p.slider], _rot(tg) @ p.anchor[p.guide]
+            dg = _rot(tg) @ local
+            d = (os_ + rs) - (og + rg)
+            dd = (vs + ws * (_J @ rs)) - (vg + wg * (_J @ rg))
+            return (-ws * ws * rs + wg * wg * rg) @ dg + 2.0 * wg * (dd @ (_J @ dg)) - wg * wg * (d @ dg)
+
         for p in self.mech.prismatics:
-            (os_, ts), (og, tg) = self._pose(q, p.slider), self._pose(q, p.guide)
-            (vs, ws), (vg, wg) = self._pose(qd, p.slider), self._pose(qd, p.guide)
-            rs, rg = _rot(ts) @ p.anchor[p.slider], _rot(tg) @ p.anchor[p.guide]
-            ng = _rot(tg) @ p.normal
-            d = (os_ + rs) - (og + rg)
-            dd = (vs + ws * (_J @ rs)) - (vg + wg * (_J @ rg))
-            # Φ = d·n_g;  Φ̈ = d̈·n_g + 2 ḋ·ṅ_g + d·n̈_g,  ṅ_g = θ̇_g k×n_g,  n̈_g = θ̈_g k×n_g − θ̇_g² n_g
-            quad = (-ws * ws * rs + wg * wg * rg) @ ng + 2.0 * wg * (dd @ (_J @ ng)) - wg * wg * (d @ ng)
-            out += [0.0, -quad]
-        if self.rotary:
-            out.append(rate)
-        else:    # as a prismatic pair's normal row, with u for n
-            p = self.guide
-            (os_, ts), (og, tg) = self._pose(q, p.slider), self._pose(q, p.guide)
-            (vs, ws), (vg, wg) = self._pose(qd, p.slider), self._pose(qd, p.guide)
-            rs, rg = _rot(ts) @ p.anchor[p.slider], _rot(tg) @ p.anchor[p.guide]
-            ug = _rot(tg) @ self.u
-            d = (os_ + rs) - (og + rg)
-            dd = (vs + ws * (_J @ rs)) - (vg + wg * (_J @ rg))
-            quad = (-ws * ws * rs + wg * wg * rg) @ ug + 2.0 * wg * (dd @ (_J @ ug)) - wg * wg * (d @ ug)
-            out.append(rate - quad)
+            out += [0.0, -quad(p, p.normal)]
+        out.append(rate if self.rotary else rate - quad(self.guide, self.u))
         return np.array(out)
 
     def _e_drive(self, speed: float) -> np.ndarray:
