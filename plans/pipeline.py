@@ -303,10 +303,11 @@ def _forces_at(scene: Scene, forces: Forces, i: int) -> dict:
 LEVER_RTOL = 1e-9
 
 
-def _force_sheets(scene: Scene, motion: Motion, forces: Forces, scales: Scales, own, stem: str, style: Style,
-                  path: str) -> dict[str, str]:
+def _force_sheets(scene: Scene, motion: Motion, forces: Forces, levers: dict, own, stem: str,
+                  style: Style) -> dict[str, str]:
     """The force-plan sheets (``-forces``; ``-forces-2`` … when one A3 sheet does not hold
-    them) and Zhukovsky's lever (``-lever``) at the positions drawn on their own."""
+    them) and Zhukovsky's lever (``-lever``, from ``levers``: position → lever) at the
+    positions drawn on their own."""
     files: dict[str, str] = {}
     for i in own:
         sfx = _suffix(motion, i)
@@ -316,9 +317,8 @@ def _force_sheets(scene: Scene, motion: Motion, forces: Forces, scales: Scales, 
                                       ident=f"forces{sfx or ''}", style=style)
             for k, svg in enumerate(sheets):
                 files[f"{stem}-forces{sfx}{'' if k == 0 else f'-{k + 1}'}.svg"] = svg
-        if "lever" in scene.draw and scales.mu_v is not None:
-            result = _lever_at(motion, forces, i, scales.mu_v, path)
-            files[f"{stem}-lever{sfx}.svg"] = draw_lever(result, Heading(scene.title, "Zhukovsky's lever", label),
+        if i in levers:
+            files[f"{stem}-lever{sfx}.svg"] = draw_lever(levers[i], Heading(scene.title, "Zhukovsky's lever", label),
                                                          ident=f"lever{sfx or ''}", style=style)
     return files
 
@@ -336,11 +336,10 @@ def _lever_at(motion: Motion, forces: Forces, i: int, mu_v: float, path: str):
     return result
 
 
-def _lever_report(motion: Motion, forces: Forces, i: int, mu_v: float, path: str) -> dict:
-    """``lever`` (the balancing element found on Zhukovsky's lever) and ``agreement``: the
-    relative differences of the lever's and the power balance's figures from the
-    group-by-group one."""
-    result = _lever_at(motion, forces, i, mu_v, path)
+def _lever_report(result, forces: Forces, i: int) -> dict:
+    """``lever`` (the balancing element found on Zhukovsky's lever ``result`` at position i)
+    and ``agreement``: the relative differences of the lever's and the power balance's
+    figures from the group-by-group one."""
     value = float(forces.balance.value[i])
     ref = max(abs(value), 1e-300)
     power = None if forces.power is None else float(forces.power[i])
@@ -467,12 +466,14 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
             sym = "μ_V" if kind == "velocity" else "μ_a"
             files[f"{stem}-{kind}{sfx}.svg"] = draw_plan(plan, heading, ident=f"{kind}{sfx or ''}", style=style,
                                                          notes=tuple(n for n in scales.notes if n.startswith(sym)))
+    # Zhukovsky's lever at every position (the report's figure), once: the sheets draw some
+    levers = {i: _lever_at(motion, forces, i, scales.mu_v, path) for i in range(len(motion))} \
+        if forces is not None and "lever" in scene.draw and scales.mu_v is not None else {}
     if forces is not None and {"forces", "lever"} & set(scene.draw):
-        files.update(_force_sheets(scene, motion, forces, scales, own, stem, style, path))
+        files.update(_force_sheets(scene, motion, forces, levers, own, stem, style))
     data = report(scene, motion, scales, forces)
-    if forces is not None and "lever" in scene.draw and not rest[0]:
-        for i, pos in enumerate(data["positions"]):
-            pos["forces"].update(_lever_report(motion, forces, i, scales.mu_v, path))
+    for i, result in levers.items():
+        data["positions"][i]["forces"].update(_lever_report(result, forces, i))
     if cycle is not None:
         sheets, data["cycle"] = _cycle_sheets(scene, cycle, scales, stem, style)
         files.update(sheets)
