@@ -170,16 +170,19 @@ def _check_terms(terms: Sequence[ForceTerm], what: str) -> list[ForceTerm]:
 
 def force_plan(group: str, terms: Sequence[ForceTerm], *, internal: Sequence[ForceTerm] = (),
                mu: float | None = None, window: tuple[float, float] = FORCE_REFERENCE_MM,
-               limit: float = FORCE_PLAN_MAX_MM) -> ForcePlan:
+               limit: float = FORCE_PLAN_MAX_MM, unmatched: str = "raise") -> ForcePlan:
     """The force polygon of ``group`` (see the module docstring).
 
     ``terms``: the group's forces in the order of its vector equation, summing to zero within
     :data:`CLOSURE_REL` of Σ|F| (else :class:`ConstructionError` giving the residual);
     ``internal``: reactions between its own links, each drawn as the diagonal of the polygon
-    it equals (an error when none does: the forces on that link are not consecutive sides);
+    it equals (when none does — the forces on that link are not consecutive sides — an error,
+    or with ``unmatched="skip"`` the reaction is left out of the plan);
     ``mu``: μF in N/mm, by default the series value that draws the largest force ``window``
     mm long and keeps the polygon within ``limit`` mm."""
     what = f"force plan of {group}"
+    if unmatched not in ("raise", "skip"):
+        raise ValueError(f"unmatched is 'raise' or 'skip', got {unmatched!r}")
     terms_ = _check_terms(terms, what)
     inner = _check_terms(internal, what + " (internal)")
     if not terms_:
@@ -221,11 +224,16 @@ def force_plan(group: str, terms: Sequence[ForceTerm], *, internal: Sequence[For
                                            "total"))
                 break
     scale = float(mags.sum())
+    kept = []
     for t in inner:
         if not t.value > ZERO_REL * fmax:
+            kept.append(t)
             continue
         hit = [(i, j) for i in range(n) for j in range(n) if i != j
                and float(np.hypot(*(corners[j] - corners[i] - t.vector))) <= 1e-7 * scale]
+        if not hit and unmatched == "skip":
+            continue
+        kept.append(t)
         if not hit:
             raise ConstructionError(f"{what}: {t.quantity} = ({t.vector[0]:.6g}, {t.vector[1]:.6g}) N joins no two "
                                     "vertices of the polygon: list the forces on one link consecutively")
@@ -238,7 +246,7 @@ def force_plan(group: str, terms: Sequence[ForceTerm], *, internal: Sequence[For
             u = (b - a) / float(np.linalg.norm(b - a))
             lines.append(ConstructionLine(_pt(a - EXTENSION_MM * u), _pt(b + EXTENSION_MM * u), t.quantity, group))
     return ForcePlan(group, float(mu), labels[0], points, tuple(vectors), tuple(lines), tuple(terms_), tuple(totals),
-                     tuple(inner))
+                     tuple(kept))
 
 
 def _totals(terms: Sequence[ForceTerm]) -> list[ForceTerm]:

@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import ConstructionError
 from ..kinematics import Motion
 from ..kinetostatics import Forces
 from .forces import (BalanceForce, BalanceMoment, ForcePlan, ForceTerm, Lever, LeverCouple, LeverLoad, force_plan,
@@ -41,16 +40,8 @@ def group_force_plans(forces: Forces, i: int) -> tuple[ForcePlan, ...]:
         inner = [ForceTerm(t.quantity, _pt(t.vector[i]), t.kind) for t in (g.inner or ())]
         # an inner reaction is drawn as the diagonal it equals, where the forces on its link are
         # consecutive sides (a class II group's); a class III/IV polygon lists them by kind
-        out.append(force_plan(g.group, terms, internal=[t for t in inner if _diagonal(g.group, terms, t)]))
+        out.append(force_plan(g.group, terms, internal=inner, unmatched="skip"))
     return tuple(out)
-
-
-def _diagonal(group: str, terms: list[ForceTerm], term: ForceTerm) -> bool:
-    try:
-        force_plan(group, terms, internal=[term])
-    except ConstructionError:
-        return False
-    return True
 
 
 def _ends(motion: Motion, link: str, i: int) -> tuple[np.ndarray, np.ndarray]:
