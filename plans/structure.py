@@ -23,6 +23,7 @@ orients the groups' names, as before.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import ClassVar
 from itertools import combinations
 
 from .errors import StructureError
@@ -61,6 +62,9 @@ class Joint:
 class Group:
     """A class II Assur group: links ``m`` and ``n``, outer pair ``d`` (m–k), inner pair ``e``
     (m–n), outer pair ``f`` (n–p)."""
+
+    #: The kind of group, the key of its solver in :data:`plans.kinematics.kinds.SOLVERS`.
+    kind: ClassVar[str] = "dyad"
 
     m: str
     n: str
@@ -412,6 +416,8 @@ class ComplexGroup:
     """A class III (order III: base link + three rods) or class IV (order II: closed
     four-sided contour) Assur group of four links and six pairs."""
 
+    kind: ClassVar[str] = "complex"
+
     links: tuple[str, ...]
     inner: tuple[Pair, ...]
     outer: tuple[Pair, ...]
@@ -467,6 +473,8 @@ class DrivenGroup:
     2p = 3n − 1 equations and the drive the last one; the links are solved together
     (:mod:`plans.kinematics.drives`). ``inner``: pairs among its links; ``outer``: with the
     frame (``a`` is the group's link)."""
+
+    kind: ClassVar[str] = "driven"
 
     links: tuple[str, ...]
     inner: tuple[Pair, ...]
