@@ -15,7 +15,7 @@ from plans.kinematics import analyse, solve, special
 from plans.kinematics.compiled import GroupRates
 from plans.kinematics.generic import GroupEquations
 from plans.kinematics.groups import accelerations, velocities
-from plans.kinematics.solve import _set_drive_rates
+from plans.kinematics.walk import set_drive_rates as _set_drive_rates
 from plans.model import build_mechanism
 from plans.scene import read_scene
 from plans.structure import ComplexGroup, analyse_structure

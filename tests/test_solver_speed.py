@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from plans.errors import AssemblyError, PlansError
-from plans.kinematics import Motion, analyse, solve
+from plans.kinematics import Motion, analyse, continuation
 from plans.model import build_mechanism
 from plans.scene import read_scene
 from plans.structure import ComplexGroup, analyse_structure
@@ -35,7 +35,7 @@ def _values(mech):
 
 
 def _slow(monkeypatch):
-    monkeypatch.setattr(solve, "_fast_walk", lambda *a, **k: (None, None))
+    monkeypatch.setattr(continuation, "fast_walk", lambda *a, **k: (None, None))
 
 
 def _close(a, b, rel=1e-12):
@@ -69,7 +69,7 @@ def test_fast_path_is_taken(name, monkeypatch):
     def boom(*a, **k):
         raise AssertionError("fell back to the step-by-step walk")
 
-    monkeypatch.setattr(solve, "_walk", boom)
+    monkeypatch.setattr(continuation, "newton_walk", boom)
     analyse(mech, st, TURN, order=2)
 
 

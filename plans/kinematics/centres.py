@@ -22,7 +22,7 @@ import numpy as np
 
 from ..scene import FRAME
 from .tolerances import INFINITY_RTOL
-from .state import J, Motion
+from .state import J, Solution
 
 __all__ = ["Centre", "Centres", "centres", "centre_from", "INFINITY_RTOL"]
 
@@ -57,7 +57,7 @@ class Centres:
     relative: dict[tuple[str, str], Centre]
 
 
-def _centre(motion: Motion, i: str, j: str) -> Centre:
+def _centre(motion: Solution, i: str, j: str) -> Centre:
     si, sj = motion.links[i], motion.links[j]
     size = motion.mechanism.size
     w = (si.v - si.omega[:, None] * J(si.origin)) - (sj.v - sj.omega[:, None] * J(sj.origin))
@@ -74,7 +74,7 @@ def _centre(motion: Motion, i: str, j: str) -> Centre:
     return Centre((i, j), point, direction)
 
 
-def centres(motion: Motion) -> Centres:
+def centres(motion: Solution) -> Centres:
     """Every absolute and relative centre of the mechanism (needs velocities)."""
     if motion.order < 1:
         raise ValueError("instantaneous centres need the velocities: solve with order >= 1")
@@ -84,7 +84,7 @@ def centres(motion: Motion) -> Centres:
     return Centres(absolute, relative)
 
 
-def centre_from(motion: Motion, link: str, point: str, i: int) -> np.ndarray | None:
+def centre_from(motion: Solution, link: str, point: str, i: int) -> np.ndarray | None:
     """The absolute centre of ``link`` at position ``i`` (m) from the velocity of its point
     ``point``: P = X + k × v_X / ω (the point of :func:`centres` up to rounding, as a
     draughtsman finds it from one velocity); None when ω = 0 (the link translates)."""

@@ -21,7 +21,7 @@ from ..model import Mechanism
 from ..scene import FRAME
 from ..structure import Structure
 from .solve import analyse
-from .state import Motion
+from .motion import Motion
 
 __all__ = ["Output", "Cycle", "output_motion", "solve_cycle", "DENSE_MIN", "EXTREME_TOL_DEG"]
 

@@ -1,7 +1,7 @@
 """How far a solved position is from its group's singular position: a local search.
 
 :func:`distance` answers the near-singular warning's question — how many degrees (metres)
-of drive lie between position i of a solved :class:`~plans.kinematics.state.Motion` and the
+of drive lie between position i of a solved :class:`~plans.kinematics.motion.Motion` and the
 nearest singular (limit or crossing) position of one group — without analysing the whole
 mechanism again for every trial value. Only the groups up to the one asked about are
 posed, and only at the trial drive values, continued from the pose at position i:
@@ -20,14 +20,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..scene import LINEAR_STEPS_PER_SIZE, STEP_DEG
-from ..structure import ComplexGroup, DrivenGroup
-from .compiled import CompiledGroup
-from .tolerances import ASSEMBLY_RTOL
-from .drives import DrivenEquations
-from .generic import GroupEquations
-from .groups import candidates, conditioning
-from .state import LinkState, Motion
+from .kinds import GroupSolver, Seed, chain
+from .state import LinkState, Solution
+from .walk import drive_states, step
 
 __all__ = ["distance", "LocalPoser"]
 
@@ -35,85 +30,38 @@ __all__ = ["distance", "LocalPoser"]
 class LocalPoser:
     """Poses of the links of the groups up to ``group`` at drive values near position i."""
 
-    def __init__(self, motion: Motion, group: str, i: int):
+    def __init__(self, motion: Solution, group: str, i: int):
         self.mech = mech = motion.mechanism
-        driven = motion.structure.driven
-        groups = ([driven] if driven is not None else []) + list(motion.structure.groups)
-        last = next(k for k, g in enumerate(groups) if g.name == group)
-        self.groups = groups[:last + 1]
-        self.target = self.groups[-1]
-        self.step = STEP_DEG if mech.drive.kind.angular else mech.size / LINEAR_STEPS_PER_SIZE
-        self.tol = ASSEMBLY_RTOL * mech.size
+        solvers = chain(mech, motion.structure)
+        last = next(k for k, s in enumerate(solvers) if s.group.name == group)
+        self.solvers: list[GroupSolver] = solvers[:last + 1]
+        self.target = self.solvers[-1]
+        self.step = step(mech)
         x0 = float(motion.values[i])
         here = {name: s.take(np.array([i])) for name, s in motion.links.items()}
-        # the class II branches taken at i, and the complex groups' poses there
-        self.choice: dict[str, int] = {}
-        self.eqs: dict[str, GroupEquations] = {}
+        # each group's seed at i: a class II group's branch taken there, the others' poses
         states = self._drive(x0)
-        pose: dict[str, np.ndarray] = {}
-        for g in self.groups:
-            if isinstance(g, (ComplexGroup, DrivenGroup)):
-                eq = self.eqs[g.name] = GroupEquations(mech, g.links, g.pairs) if isinstance(g, ComplexGroup) \
-                    else DrivenEquations(mech, g, np.array([x0]))
-                pose[g.name] = eq.pose(here)[0]
-                for name in g.links:
-                    states[name] = LinkState(here[name].theta, here[name].origin)
-                continue
-            options = candidates(g, mech, states, self.tol)
-            cost = [float(np.sum((o.m.origin - here[g.m].origin) ** 2) + np.sum((o.n.origin - here[g.n].origin) ** 2)
-                          + mech.size ** 2 * (_turn(o.m.theta - here[g.m].theta) ** 2
-                                              + _turn(o.n.theta - here[g.n].theta) ** 2))
-                    for o in options]
-            k = int(np.argmin(cost))
-            self.choice[g.name] = k
-            states[g.m], states[g.n] = options[k].m, options[k].n
-        self.cache: list[tuple[float, dict[str, np.ndarray], dict[str, LinkState]]] = [(x0, pose, states)]
-        self.sign = np.sign(self._condition(states))
+        seeds = {s.group.name: s.local_start(states, here, x0) for s in self.solvers}
+        self.cache: list[tuple[float, dict[str, Seed], dict[str, LinkState]]] = [(x0, seeds, states)]
+        self.sign = np.sign(self._condition(states, x0))
 
     def _drive(self, x: float) -> dict[str, LinkState]:
-        from .solve import drive_states
         return drive_states(self.mech, np.array([x]))
 
-    def _condition(self, states) -> float:
-        g = self.target
-        if isinstance(g, DrivenGroup):
-            return float(self.eqs[g.name].condition(states)[0])
-        if isinstance(g, ComplexGroup):
-            from .solve import group_condition
-            return float(group_condition(self.mech, g, states)[0])
-        return float(conditioning(g, self.mech, states)[0])
+    def _condition(self, states, x: float) -> float:
+        return float(self.target.condition(states, np.array([x]))[0])
 
-    def _pose_at(self, x: float, start: dict[str, np.ndarray]):
-        """All states at x, the complex groups continued from ``start`` by one Newton solve
-        each (None when a group does not assemble)."""
-        mech = self.mech
+    def _pose_at(self, x: float, start: dict[str, Seed]):
+        """All states at x, each group continued from its seed in ``start`` (None when a group
+        does not assemble)."""
         states = self._drive(x)
-        pose = {}
-        for g in self.groups:
-            if isinstance(g, DrivenGroup):     # the drive's value x enters its equations
-                eq = self.eqs[g.name] = DrivenEquations(mech, g, np.array([x]))
-                result = eq.newton(start[g.name][None, :], states)
-                if not result.converged:
-                    return None
-                pose[g.name] = result.q[0]
-                states.update(eq.states(result.q, {}))
-                continue
-            if isinstance(g, ComplexGroup):
-                eq = self.eqs[g.name]
-                known = {n: s for n, s in states.items() if n not in eq.col}
-                cg = CompiledGroup(mech, eq.links, eq.pairs, known)
-                q, _, conv, _ = cg.newton(start[g.name][None, :], np.array([0]))
-                if not conv[0]:
-                    return None
-                pose[g.name] = q[0]
-                for name, c in eq.col.items():
-                    states[name] = LinkState(q[:, c + 2], q[:, c:c + 2])
-                continue
-            o = candidates(g, mech, states, self.tol)[self.choice[g.name]]
-            if not bool(o.valid[0]):
+        seeds = {}
+        for s in self.solvers:
+            seed = s.local_pose(states, x, start[s.group.name])
+            if seed is None:
                 return None
-            states[g.m], states[g.n] = o.m, o.n
-        return pose, states
+            seeds[s.group.name] = seed
+        return seeds, states
 
     def _unit(self, n: int) -> np.ndarray:
         """Metres per unit of each of a pose vector's n entries (x_o, y_o, θ per link): 1 for
@@ -133,22 +81,19 @@ class LocalPoser:
             got = self._pose_at(xk, prev)
             if got is None:
                 return None
-            moved = max((np.max(np.abs(got[0][n] - prev[n]) * self._unit(len(prev[n]))) for n in prev), default=0.0)
+            moved = max((np.max(np.abs(got[0][n].pose - p.pose) * self._unit(len(p.pose)))
+                         for n, p in prev.items() if p.pose.size), default=0.0)
             if moved > 0.05 * self.mech.size and moved > 0.05 * self.mech.size * abs(xk - prev_x) / self.step:
                 return None              # the branch jumped
             prev, prev_x, states = got[0], xk, got[1]
-            c = self._condition(states)
+            c = self._condition(states, xk)
             if np.sign(c) != self.sign or not np.isfinite(c):
                 return None
             self.cache.append((xk, prev, states))
-        return self._condition(states)
+        return self._condition(states, prev_x)
 
 
-def _turn(d: np.ndarray) -> float:
-    return float(np.arctan2(np.sin(d), np.cos(d))[0])
-
-
-def distance(motion: Motion, group: str, i: int) -> float | None:
+def distance(motion: Solution, group: str, i: int) -> float | None:
     """How far the drive is from the singular position of ``group`` nearest position ``i``
     of ``motion`` (degrees for a crank, metres for a slider), or None when none is found
     nearby. Secant steps on the squared condition figure c², which falls to zero linearly

@@ -1,6 +1,6 @@
 """Sliding along the guides, and the angles of the links, at every position of a solved motion.
 
-Pure numpy over the positions of a :class:`~plans.kinematics.state.Motion`: nothing here solves
+Pure numpy over the positions of a :class:`~plans.kinematics.state.Solution`: nothing here solves
 anything, it reads the link states the solver produced.
 
 For each prismatic pair (``slider`` translating along a line fixed in ``guide``):
@@ -43,7 +43,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .state import J, Motion
+from .state import J, Solution
 
 __all__ = ["Sliding", "sliding", "link_angles"]
 
@@ -66,7 +66,7 @@ class Sliding:
     coriolis: np.ndarray | None = None
 
 
-def sliding(motion: Motion) -> dict[str, Sliding]:
+def sliding(motion: Solution) -> dict[str, Sliding]:
     """Every prismatic pair of the motion's mechanism, in scene order (key → :class:`Sliding`)."""
     mech = motion.mechanism
     pairs = mech.prismatics
@@ -91,7 +91,7 @@ def sliding(motion: Motion) -> dict[str, Sliding]:
     return out
 
 
-def link_angles(motion: Motion) -> dict[str, np.ndarray]:
+def link_angles(motion: Solution) -> dict[str, np.ndarray]:
     """Each link's angle at every position, degrees CCW from +x (link name → (N,)): the
     direction of its first → second point, or its rotation from the sketch for a one-point
     link; in [0, 360) (see the module)."""

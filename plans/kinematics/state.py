@@ -12,16 +12,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 from functools import cached_property
-from typing import TYPE_CHECKING, Mapping
+from typing import Mapping
 
 import numpy as np
 
-if TYPE_CHECKING:   # these modules read Motion: imported where used, not at the top
-    from .centres import Centres
-    from .sliders import Sliding
-    from .special import GroupPoints, TriadSolution
-
-__all__ = ["J", "cross", "rotate", "cos_sin", "LinkState", "Motion"]
+__all__ = ["J", "cross", "rotate", "cos_sin", "LinkState", "Solution"]
 
 def J(v: np.ndarray) -> np.ndarray:
     """k × v: the vector turned by +90°."""
@@ -175,17 +170,15 @@ class LinkState:
 
 
 @dataclass(frozen=True)
-class Motion:
-    """The solved mechanism at N drive positions.
+class Solution:
+    """The solved links of a mechanism at N drive positions: what the solver found, and the
+    rigid-body reads of it (a point's position, velocity, acceleration). The modules that
+    derive more from it (centres, special points, sliding) take a Solution; the one object
+    users read, :class:`plans.kinematics.motion.Motion`, adds those on top.
 
     ``values`` are the drive's values as requested (degrees or metres); ``order`` is 0
     (positions), 1 (+ velocities) or 2 (+ accelerations); ``sines`` holds, per group, the
     normalised determinant of its velocity equations (1 = well conditioned, 0 = singular).
-
-    Motion carries everything the kinematics knows, so that constructions and drawing compute
-    none of it: the values derived from the links' states (``sliding``, ``angles``,
-    ``centres``, the class III groups' ``special_points``, their second solution ``triads``
-    and its cross-check ``triad_disagreement``) are computed once, when first read.
     """
 
     mechanism: "object"
@@ -224,68 +217,6 @@ class Motion:
         if i is None:
             return self.links[link].acceleration(xy)
         return self.links[link].take(np.array([i])).acceleration(np.asarray(xy, float)[None, :])[0]
-
-    @cached_property
-    def special_points(self) -> dict[str, GroupPoints]:
-        """Every class III group's axes and special points, with the velocities and accelerations
-        the plans read at them (group name → :class:`plans.kinematics.special.GroupPoints`)."""
-        from .special import group_points   # special reads Motion: imported here, not at the top
-
-        return group_points(self)
-
-    @cached_property
-    def triads(self) -> dict[str, TriadSolution]:
-        """Every class III group solved a second, independent way, through its special points
-        (group name → :class:`plans.kinematics.special.TriadSolution`; positions only at order 0)."""
-        from .special import triads
-
-        return {g.name: t for g, t in triads(self).items()}
-
-    @cached_property
-    def triad_disagreement(self) -> dict[str, float]:
-        """The cross-check of :attr:`triads` with this motion: per group, the largest relative
-        difference of ω, v (ε, a) (:func:`plans.kinematics.special.disagreement`)."""
-        from .special import disagreements
-
-        return disagreements(self)
-
-    @cached_property
-    def centres(self) -> Centres:
-        """Every absolute and relative instantaneous centre (:class:`plans.kinematics.centres.Centres`,
-        m); needs velocities (ValueError at order 0)."""
-        from .centres import centres
-
-        return centres(self)
-
-    def centre_from(self, link: str, point: str, i: int) -> np.ndarray | None:
-        """The absolute centre of ``link`` at position i (m) found from its point ``point``'s
-        velocity, X + k × v_X / ω; None when ω = 0 (:func:`plans.kinematics.centres.centre_from`)."""
-        from .centres import centre_from
-
-        return centre_from(self, link, point, i)
-
-    @cached_property
-    def angles(self) -> dict[str, np.ndarray]:
-        """Each link's angle at every position, degrees CCW from +x in [0, 360)
-        (:func:`plans.kinematics.sliders.link_angles`)."""
-        from .sliders import link_angles
-
-        return link_angles(self)
-
-    def singular_distance(self, group: str, i: int) -> float | None:
-        """How far (degrees or metres of drive) position i is from ``group``'s nearest singular
-        position, None when none is found (:func:`plans.kinematics.singular.distance`)."""
-        from .singular import distance
-
-        return distance(self, group, i)
-
-    @cached_property
-    def sliding(self) -> dict[str, Sliding]:
-        """Every prismatic pair's sliding (:func:`plans.kinematics.sliders.sliding`), computed
-        once for all the plans and the report that read it."""
-        from .sliders import sliding   # sliders reads Motion: imported here, not at the top
-
-        return sliding(self)
 
     def __len__(self) -> int:
         return len(self.values)

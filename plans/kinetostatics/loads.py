@@ -20,7 +20,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import PlansError
-from ..kinematics.state import Motion, cross
+from ..kinematics import Motion
+from ..kinematics.state import cross
 from ..scene import Scene
 
 __all__ = ["Load", "Couple", "applied_loads"]

@@ -40,7 +40,8 @@ from typing import Mapping
 import numpy as np
 
 from ..errors import PlansError, SceneError
-from ..kinematics.state import J, Motion, cross
+from ..kinematics import Motion
+from ..kinematics.state import J, cross
 from ..model import Prismatic
 from ..scene import FRAME, Scene
 from ..structure import ComplexGroup, DrivenGroup, Group, Pair
