@@ -1,5 +1,5 @@
 """The fast paths of the kinematic solver agree with the straightforward computations they
-replace: a class III/IV group's compiled rate solves (:class:`plans.kinematics.compiled.GroupRates`)
+replace: a class III/IV group's compiled rate solves (:class:`plans.kinematics.compiled_rates.GroupRates`)
 with the generic pair equations (:class:`plans.kinematics.generic.GroupEquations`), to rounding;
 a large class II request solved in blocks (``solve._direct_motion``) with the same request
 solved at once, to the last bit."""
@@ -12,7 +12,7 @@ import pytest
 from conftest import EXAMPLES
 from plans.errors import PlansError
 from plans.kinematics import analyse, solve, special
-from plans.kinematics.compiled import GroupRates
+from plans.kinematics.compiled_rates import GroupRates
 from plans.kinematics.generic import GroupEquations
 from plans.kinematics.groups import accelerations, velocities
 from plans.kinematics.walk import set_drive_rates as _set_drive_rates

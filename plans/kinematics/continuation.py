@@ -13,7 +13,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..model import Mechanism
-from .compiled import CompiledGroup, walk as compiled_walk
+from .compiled import CompiledGroup
+from .compiled_walk import walk as compiled_walk
 from .generic import GroupEquations
 from .state import LinkState
 from .tolerances import JUMP_RATIO
@@ -35,7 +36,7 @@ def continue_group(mech: Mechanism, g, eq: GroupEquations, states: dict[str, Lin
 
 def fast_walk(mech: Mechanism, eq: GroupEquations, states: dict[str, LinkState], walk: Walk
               ) -> tuple[np.ndarray | None, CompiledGroup]:
-    """The group's poses (len(grid), 3k) by :func:`plans.kinematics.compiled.walk`, or None,
+    """The group's poses (len(grid), 3k) by :func:`plans.kinematics.compiled_walk.walk`, or None,
     and its compiled equations."""
     grid, sweeps = walk.grid, walk.sweeps
     known = {name: s for name, s in states.items() if name not in eq.col}

@@ -27,7 +27,7 @@ from .kinds.dyad import branch_at_sketch
 from .motion import Motion
 from .state import LinkState
 from .tolerances import ASSEMBLY_RTOL, SINGULAR_SIN
-from .walk import Walk, check_crossing, drive_states, fmt, group_label, set_drive_rates, start, walk_to
+from .walk import check_crossing, drive_states, fmt, group_label, set_drive_rates, start, walk_to
 
 __all__ = ["analyse", "DIRECT_BLOCK"]
 

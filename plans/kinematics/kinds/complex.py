@@ -15,7 +15,8 @@ import numpy as np
 
 from ...model import Mechanism
 from .. import special
-from ..compiled import CompiledGroup, GroupRates
+from ..compiled import CompiledGroup
+from ..compiled_rates import GroupRates
 from ..continuation import continue_group
 from ..generic import GroupEquations
 from ..state import LinkState
