@@ -13,7 +13,9 @@ from dataclasses import dataclass, field
 from enum import StrEnum
 from typing import Mapping
 
+#: The frame's name in [links] (a link name, a string).
 FRAME = "0"
+#: The sheets a scene may draw (``[plans] draw``), in the order they are drawn.
 DRAWABLE = ("scheme", "velocity", "acceleration", "centres", "positions", "diagrams", "velocities", "forces", "lever")
 #: What needs the force analysis (kinetostatics): the force plans and Zhukovsky's lever.
 FORCE_SHEETS = ("forces", "lever")
@@ -29,8 +31,6 @@ MAX_VELOCITY_PLANS = 24
 CYCLE_STARTS = ("angle", "extreme")
 #: What a scene draws when [plans] says nothing.
 DEFAULT_DRAW = ("scheme", "velocity", "acceleration")
-_TOP_KEYS = {"title", "description", "points", "links", "sliders", "drive", "lengths", "plans", "scales",
-             "masses", "forces", "moments", "gravity", "balance"}
 
 # --- bounds of what a scene may ask for ------------------------------------------------------
 #: Largest |coordinate| of a sketch point and largest length, m. Real linkages measure metres to
