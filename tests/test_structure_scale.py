@@ -17,7 +17,7 @@ import random
 
 import pytest
 
-import plans.structure as structure
+import plans.structure.search as structure
 from plans.errors import StructureError
 from plans.model import build_mechanism
 from plans.scene import FRAME, parse_scene

@@ -1,4 +1,4 @@
-"""Structural analysis: Chebyshev's W, Assur groups, their forms, the structural formula.
+"""The decomposition search: Chebyshev's W, the original mechanism, the Assur groups in order.
 
 The decomposition is built up from the original mechanism (frame + driving link): at each
 step the first pair of unknown links (in [links] order) that forms a class II group on the
@@ -18,116 +18,20 @@ a walk over every combination, in the same order and orientation, but the work i
 frontier's size per step (O(n²) in all) however the links are listed, instead of growing as n⁴
 (n⁵ counting each check's look-ups) with the unknown links. The listing only breaks ties and
 orients the groups' names, as before.
+
+Imports only plans.errors, plans.model, plans.scene and the structure package's value types
+and index; must not import kinematics or anything above the structure layer.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import ClassVar
 from itertools import combinations
 
-from .errors import StructureError
-from .model import Mechanism, Prismatic
-from .scene import FRAME, DriveKind
-
-__all__ = ["Joint", "Group", "Pair", "Rod", "ComplexGroup", "DrivenGroup", "Structure", "analyse_structure", "FORMS",
-           "MAX_DRIVEN_LINKS"]
-
-#: The five forms of class II groups (outer pair D of link m, inner pair E, outer pair F of n).
-FORMS = ("RRR", "RRP", "RPR", "PRP", "RPP")
-_ROMAN = {1: "I", 2: "II", 3: "III", 4: "IV"}
-
-
-@dataclass(frozen=True)
-class Joint:
-    """One pair of a group as the solver sees it.
-
-    ``kind`` is ``"R"`` (``point`` is the pin; for an outer pair its position is known from
-    link ``other``) or ``"P"`` (``prismatic`` is the pair; ``other`` the link on the far side).
-    """
-
-    kind: str
-    other: str
-    point: str | None = None
-    prismatic: Prismatic | None = None
-
-    def describe(self) -> str:
-        if self.kind == "R":
-            return f"R {self.point}"
-        p = self.prismatic
-        return f"P {p.slider}/{p.guide}"
-
-
-@dataclass(frozen=True)
-class Group:
-    """A class II Assur group: links ``m`` and ``n``, outer pair ``d`` (m–k), inner pair ``e``
-    (m–n), outer pair ``f`` (n–p)."""
-
-    #: The kind of group, the key of its solver in :data:`plans.kinematics.kinds.SOLVERS`.
-    kind: ClassVar[str] = "dyad"
-
-    m: str
-    n: str
-    d: Joint
-    e: Joint
-    f: Joint
-
-    klass: int = 2
-    order: int = 2
-
-    @property
-    def form(self) -> str:
-        return self.d.kind + self.e.kind + self.f.kind
-
-    @property
-    def links(self) -> tuple[str, str]:
-        return (self.m, self.n)
-
-    @property
-    def name(self) -> str:
-        return f"{_ROMAN[self.klass]}({self.m}-{self.n})"
-
-    def as_dict(self) -> dict:
-        return {"name": self.name, "links": [self.m, self.n], "class": self.klass, "order": self.order,
-                "form": self.form, "pairs": [j.describe() for j in (self.d, self.e, self.f)]}
-
-
-@dataclass(frozen=True)
-class Structure:
-    """W, the original mechanism and the groups in the order they are attached (and solved).
-
-    ``driven``: for a drive inside the chain (a coupler's angle, a hydraulic cylinder), the
-    original mechanism's links solved together with the drive (:class:`DrivenGroup`); None for
-    a crank or a slider on the frame (the original mechanism is the frame and that link)."""
-
-    dof: int
-    moving: int
-    p5: int
-    p4: int
-    drive: str
-    groups: tuple["Group | ComplexGroup", ...]
-    driven: "DrivenGroup | None" = None
-
-    @property
-    def klass(self) -> int:
-        return max((g.klass for g in self.groups), default=1)
-
-    @property
-    def original(self) -> str:
-        """The original mechanism, as the structural formula writes it: I(0-1), I(0-1-2-3)."""
-        return self.driven.name if self.driven is not None else f"I({FRAME}-{self.drive})"
-
-    @property
-    def formula(self) -> str:
-        return " ← ".join([self.original, *(g.name for g in self.groups)])
-
-    def as_dict(self) -> dict:
-        out = {"dof": self.dof, "class": self.klass, "formula": self.formula,
-               "moving_links": self.moving, "p5": self.p5, "p4": self.p4,
-               "groups": [g.as_dict() for g in self.groups]}
-        if self.driven is not None:
-            out["original_mechanism"] = self.driven.as_dict()
-        return out
+from ..errors import StructureError
+from ..model import Mechanism
+from ..scene import FRAME, DriveKind
+from .groups import FORMS, ComplexGroup, DrivenGroup, Group, Joint, Pair, Structure
+from .index import _Index
 
 
 def analyse_structure(mech: Mechanism) -> Structure:
@@ -252,89 +156,6 @@ def _driven_group(ix: "_Index", mech: Mechanism) -> "DrivenGroup":
                          "pairs, or drive a crank on the frame", key="drive.link")
 
 
-class _Index:
-    """Who is joined to whom in a mechanism, built once per analysis.
-
-    ``rank``: a link's place in [links] (the search's order); ``carriers``: the links carrying
-    a point, in [links] order; ``sliding``: a link's prismatic pairs; ``neighbours``: the links
-    sharing a point or a prismatic pair with a link; ``incident``: a link's pairs as the pair
-    count of W has them (a pin of k links is k − 1 revolutes, see ``build_mechanism``), with
-    their place in ``revolutes + prismatics``; ``adjacent``: the links those pairs join it to.
-    """
-
-    def __init__(self, mech: Mechanism):
-        self.mech = mech
-        self.rank = {name: i for i, name in enumerate(mech.links)}
-        self.carriers: dict[str, list[str]] = {}
-        for name, link in mech.links.items():
-            for point in link.local:
-                self.carriers.setdefault(point, []).append(name)
-        self.sliding: dict[str, list[Prismatic]] = {name: [] for name in mech.links}
-        for p in mech.prismatics:
-            self.sliding[p.slider].append(p)
-            if p.guide != p.slider:
-                self.sliding[p.guide].append(p)
-        self.neighbours: dict[str, set[str]] = {name: set() for name in mech.links}
-        for name, link in mech.links.items():
-            for point in link.points:
-                self.neighbours[name].update(c for c in self.carriers[point] if c != name)
-            self.neighbours[name].update(p.other(name) for p in self.sliding[name])
-        # (place, link, other link, pin, prismatic) for each end of each pair
-        self.incident: dict[str, list[tuple[int, str, str, str | None, Prismatic | None]]] = \
-            {name: [] for name in mech.links}
-        for i, r in enumerate(mech.revolutes):
-            self.incident[r.a].append((i, r.a, r.b, r.point, None))
-            self.incident[r.b].append((i, r.b, r.a, r.point, None))
-        for i, p in enumerate(mech.prismatics, start=len(mech.revolutes)):
-            self.incident[p.slider].append((i, p.slider, p.guide, None, p))
-            self.incident[p.guide].append((i, p.guide, p.slider, None, p))
-        self.adjacent: dict[str, set[str]] = {name: {e[2] for e in self.incident[name]} for name in mech.links}
-
-    def joints(self, link: str, others: set[str]) -> list[Joint]:
-        """The pairs joining ``link`` to any link of ``others`` (one joint per pin or slider)."""
-        joints = []
-        for point in self.mech.links[link].points:
-            carrier = next((c for c in self.carriers[point] if c in others), None)
-            if carrier is not None:
-                joints.append(Joint("R", carrier, point=point))
-        for p in self.sliding[link]:
-            if p.other(link) in others:
-                joints.append(Joint("P", p.other(link), prismatic=p))
-        return joints
-
-    def pairs_of(self, links: set[str], others: set[str]) -> list[Pair]:
-        """Pairs joining a link of ``links`` to a link of ``others``, in the order of the
-        mechanism's revolutes then prismatics (a pair inside ``links`` once, from its
-        alphabetically first link)."""
-        found = {}
-        for link in links:
-            for i, a, b, point, prismatic in self.incident[link]:
-                if b in others and not (b in links and a > b):
-                    found[i] = Pair("P" if prismatic is not None else "R", a, b, point=point, prismatic=prismatic)
-        return [found[i] for i in sorted(found)]
-
-    def count(self, link: str, others: set[str]) -> int:
-        """How many pairs join ``link`` to links of ``others``."""
-        return sum(e[2] in others for e in self.incident[link])
-
-    def components(self, links: set[str]) -> list[set[str]]:
-        """``links`` split into parts joined by pairs, in [links] order of their first links."""
-        left, parts = set(links), []
-        for start in sorted(links, key=self.rank.__getitem__):
-            if start not in left:
-                continue
-            part, todo = {start}, [start]
-            left.discard(start)
-            while todo:
-                for x in self.adjacent[todo.pop()]:
-                    if x in left:
-                        left.discard(x)
-                        part.add(x)
-                        todo.append(x)
-            parts.append(part)
-        return parts
-
-
 def _first_dyad(ix: _Index, known: set[str], remaining: set[str], frontier: set[str]) -> Group | None:
     """The first pair of remaining links (in [links] order) that forms a class II group on
     the known links: two adjacent frontier links, each with one outer pair."""
@@ -371,137 +192,6 @@ def _dyad(ix: _Index, known: set[str], a: str, b: str) -> Group | None:
         raise StructureError(f"links {m} and {n} are joined only by prismatic pairs (PPP): such a group "
                              "does not fix its position; replace one slider by a pin", key="sliders")
     return Group(m=m, n=n, d=d, e=e, f=f)
-
-
-@dataclass(frozen=True)
-class Pair:
-    """A kinematic pair of a class III/IV group: ``a`` is a link of the group, ``b`` the
-    other link (of the group for an inner pair, known for an outer one); ``point`` names a
-    revolute pair's pin, ``prismatic`` a sliding pair."""
-
-    kind: str
-    a: str
-    b: str
-    point: str | None = None
-    prismatic: Prismatic | None = None
-
-    def describe(self) -> str:
-        return f"R {self.point}" if self.kind == "R" else f"P {self.prismatic.slider}/{self.prismatic.guide}"
-
-    def other(self, link: str) -> str:
-        return self.b if link == self.a else self.a
-
-    @property
-    def label(self) -> str:
-        """The point that names the pair (the pin, or the slider's label point)."""
-        return self.point if self.kind == "R" else self.prismatic.label
-
-
-@dataclass(frozen=True)
-class Rod:
-    """A rod of a class III group: link ``link`` joined to the base link by ``inner`` and to
-    a known link by ``outer``."""
-
-    link: str
-    inner: Pair
-    outer: Pair
-
-    @property
-    def form(self) -> str:
-        return self.outer.kind + self.inner.kind
-
-
-@dataclass(frozen=True)
-class ComplexGroup:
-    """A class III (order III: base link + three rods) or class IV (order II: closed
-    four-sided contour) Assur group of four links and six pairs."""
-
-    kind: ClassVar[str] = "complex"
-
-    links: tuple[str, ...]
-    inner: tuple[Pair, ...]
-    outer: tuple[Pair, ...]
-    klass: int
-    base: str | None = None      # class III: the base link (three inner pairs)
-
-    @property
-    def order(self) -> int:
-        return len(self.outer)
-
-    @property
-    def rods(self) -> tuple[Rod, ...]:
-        """Class III: the three rods, in the order of the base link's pairs."""
-        if self.base is None:
-            return ()
-        out = []
-        for p in self.inner:
-            rod = p.other(self.base)
-            out.append(Rod(rod, p, next(o for o in self.outer if o.a == rod)))
-        return tuple(out)
-
-    @property
-    def form(self) -> str:
-        """The kinds of the pairs: class III rod by rod (outer+inner), e.g. ``RR-RR-RR``;
-        class IV the contour then the outer pairs, e.g. ``RRRR-RR``."""
-        if self.base is not None:
-            return "-".join(r.form for r in self.rods)
-        return "".join(p.kind for p in self.inner) + "-" + "".join(p.kind for p in self.outer)
-
-    @property
-    def name(self) -> str:
-        return f"{_ROMAN[self.klass]}({'-'.join(self.links)})"
-
-    @property
-    def pairs(self) -> tuple[Pair, ...]:
-        return self.inner + self.outer
-
-    def as_dict(self) -> dict:
-        out = {"name": self.name, "links": list(self.links), "class": self.klass, "order": self.order,
-               "form": self.form, "pairs": [p.describe() for p in self.pairs],
-               "inner_pairs": [p.describe() for p in self.inner], "outer_pairs": [p.describe() for p in self.outer]}
-        if self.base is not None:
-            out["base_link"] = self.base
-            out["rods"] = [r.link for r in self.rods]
-        return out
-
-
-@dataclass(frozen=True)
-class DrivenGroup:
-    """The original mechanism of a drive inside the chain: links (not the frame) that the
-    frame and the drive's one given coordinate fix — a coupler's absolute angle, or a
-    hydraulic cylinder's stroke (link ``drive`` sliding in its guide link). Its pairs give
-    2p = 3n − 1 equations and the drive the last one; the links are solved together
-    (:mod:`plans.kinematics.drives`). ``inner``: pairs among its links; ``outer``: with the
-    frame (``a`` is the group's link)."""
-
-    kind: ClassVar[str] = "driven"
-
-    links: tuple[str, ...]
-    inner: tuple[Pair, ...]
-    outer: tuple[Pair, ...]
-    drive: str
-    klass: int = 1
-    base: None = None          # no base link: its relations are drawn as a class IV group's
-
-    @property
-    def pairs(self) -> tuple[Pair, ...]:
-        return self.inner + self.outer
-
-    @property
-    def order(self) -> int:
-        return len(self.outer)
-
-    @property
-    def form(self) -> str:
-        return "".join(p.kind for p in self.inner) + "-" + "".join(p.kind for p in self.outer)
-
-    @property
-    def name(self) -> str:
-        return f"I({FRAME}-{'-'.join(self.links)})"
-
-    def as_dict(self) -> dict:
-        return {"name": self.name, "links": list(self.links), "class": self.klass, "drive": self.drive,
-                "form": self.form, "pairs": [p.describe() for p in self.pairs]}
 
 
 def _first_complex(ix: _Index, known: set[str], remaining: set[str],
