@@ -40,15 +40,14 @@ def force_sheets(scene: Scene, motion: Motion, forces: Forces, scales: Scales, o
         return files, levers
     for i in own:
         page = Page.at(scene, motion, i, stem, style)
-        sfx, label = page.suffix, page.label
         if "forces" in scene.draw:
-            sheets = draw_force_plans(group_force_plans(forces, i), Heading(scene.title, "Force plans", label),
-                                      ident=f"forces{sfx or ''}", style=style)
+            sheets = draw_force_plans(group_force_plans(forces, i), Heading(scene.title, "Force plans", page.label),
+                                      ident=page.ident("forces"), style=style)
             for k, svg in enumerate(sheets):
-                files[f"{stem}-forces{sfx}{'' if k == 0 else f'-{k + 1}'}.svg"] = svg
+                files[f"{stem}-forces{page.suffix}{'' if k == 0 else f'-{k + 1}'}.svg"] = svg
         if i in levers:
-            files[f"{stem}-lever{sfx}.svg"] = draw_lever(levers[i], Heading(scene.title, "Zhukovsky's lever", label),
-                                                         ident=f"lever{sfx or ''}", style=style)
+            files[page.file("lever")] = draw_lever(levers[i], Heading(scene.title, "Zhukovsky's lever", page.label),
+                                                   ident=page.ident("lever"), style=style)
     return files, levers
 
 

@@ -24,7 +24,7 @@ def plan_sheets(page: Page, scales: Scales, rest: tuple[bool, bool], path: str) 
     """The velocity and acceleration plans at ``page`` the scene draws (file name → SVG);
     ``rest`` from :func:`~plans.pipeline.rest.at_rest`. A plan that fails its check raises a
     PlansError prefixed ``path``."""
-    scene, motion, i, sfx, stem, style = page.scene, page.motion, page.i, page.suffix, page.stem, page.style
+    scene, motion, i = page.scene, page.motion, page.i
     files: dict[str, str] = {}
     for kind, builder, mu, still in (("velocity", velocity_plan, scales.mu_v, rest[0]),
                                      ("acceleration", acceleration_plan, scales.mu_a, rest[1])):
@@ -32,8 +32,8 @@ def plan_sheets(page: Page, scales: Scales, rest: tuple[bool, bool], path: str) 
             continue
         heading = Heading(scene.title, f"{kind.capitalize()} plan", page.label)
         if still:
-            files[f"{stem}-{kind}{sfx}.svg"] = empty_sheet(kind, heading, ident=f"{kind}{sfx or ''}",
-                                                           why=rest_note(motion, kind), style=style)
+            files[page.file(kind)] = empty_sheet(kind, heading, ident=page.ident(kind), why=rest_note(motion, kind),
+                                                 style=page.style)
             continue
         plan = builder(motion, i, mu)
         failures = check_plan(plan) + similarity_failures(motion, plan, i)
@@ -41,8 +41,8 @@ def plan_sheets(page: Page, scales: Scales, rest: tuple[bool, bool], path: str) 
             raise PlansError(f"{path}: {kind} plan at {motion.values[i]:g} failed its geometric check: "
                              f"{failures[0]} (please report this scene)")
         sym = "μ_V" if kind == "velocity" else "μ_a"
-        files[f"{stem}-{kind}{sfx}.svg"] = draw_plan(plan, heading, ident=f"{kind}{sfx or ''}", style=style,
-                                                     notes=tuple(n for n in scales.notes if n.startswith(sym)))
+        files[page.file(kind)] = draw_plan(plan, heading, ident=page.ident(kind), style=page.style,
+                                           notes=tuple(n for n in scales.notes if n.startswith(sym)))
     return files
 
 
