@@ -23,6 +23,8 @@ from hypothesis import strategies as st
 
 import plans.output
 import plans.pipeline
+import plans.pipeline.sheets.koshel
+import plans.pipeline.sheets.plans
 from plans.cli import main
 from plans.constructions.plans import ConstructionLine
 from plans.errors import ConstructionError, PlansError, SceneError
@@ -481,14 +483,14 @@ def test_linear_drive_at_rest(tmp_path, capsys):
 # --- 13. Koshel's sheet that cannot be drawn -------------------------------------------------
 
 def test_koshel_construction_error_keeps_every_other_sheet(tmp_path, capsys, monkeypatch):
-    real = plans.pipeline.uncertain_plan
+    real = plans.pipeline.sheets.koshel.uncertain_plan
 
     def degenerate(motion, i, g):
         if i == 1:
             raise ConstructionError("a test degeneracy")
         return real(motion, i, g)
 
-    monkeypatch.setattr(plans.pipeline, "uncertain_plan", degenerate)
+    monkeypatch.setattr(plans.pipeline.sheets.koshel, "uncertain_plan", degenerate)
     out, err = _render_ok(tmp_path, KOSHEL.read_text(encoding="utf-8"), capsys, name="k")
     assert len(err) == 1 and "Koshel" in err[0] and "a test degeneracy" in err[0]
     angles = json.loads((out / "k.json").read_text(encoding="utf-8"))["positions"]
@@ -502,7 +504,7 @@ def test_koshel_construction_error_keeps_every_other_sheet(tmp_path, capsys, mon
 def test_koshel_check_failure_is_a_sheet_not_a_refusal(tmp_path, capsys, monkeypatch):
     """Koshel's plan with a construction line off its vector fails check_plan: that sheet says
     so, every other sheet is drawn."""
-    real = plans.pipeline.uncertain_plan
+    real = plans.pipeline.sheets.koshel.uncertain_plan
 
     def off_line(motion, i, g):
         plan = real(motion, i, g)
@@ -510,7 +512,7 @@ def test_koshel_check_failure_is_a_sheet_not_a_refusal(tmp_path, capsys, monkeyp
         wrong = ConstructionLine((1000.0, 1000.0), (1001.0, 1000.0), v.quantity, "test")
         return dataclasses.replace(plan, lines=plan.lines + (wrong,))
 
-    monkeypatch.setattr(plans.pipeline, "uncertain_plan", off_line)
+    monkeypatch.setattr(plans.pipeline.sheets.koshel, "uncertain_plan", off_line)
     out, err = _render_ok(tmp_path, KOSHEL.read_text(encoding="utf-8"), capsys, name="k")
     koshel = sorted(out.glob("k-koshel-*.svg"))
     assert len(err) == len(koshel) > 0 and all("Koshel" in e and "geometric check" in e for e in err)
@@ -519,7 +521,7 @@ def test_koshel_check_failure_is_a_sheet_not_a_refusal(tmp_path, capsys, monkeyp
 
 
 def test_main_plan_check_failure_stays_an_error(tmp_path, capsys, monkeypatch):
-    monkeypatch.setattr(plans.pipeline, "check_plan", lambda plan, *a, **k: ["a test failure"])
+    monkeypatch.setattr(plans.pipeline.sheets.plans, "check_plan", lambda plan, *a, **k: ["a test failure"])
     line = _render_into(tmp_path, tmp_path / "out", capsys)
     assert "a test failure" in line and "please report" in line
     assert not (tmp_path / "out").exists()

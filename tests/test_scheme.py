@@ -18,7 +18,8 @@ from plans.constructions.scheme import BLOCK_MM
 from plans.drawing import Heading, Style
 from plans.drawing.svg import draw_scheme
 from plans.drawing.text import box, runs
-from plans.pipeline import _scales, solve_scene
+from plans.pipeline import solve_scene
+from plans.pipeline.scales import scene_scales as _scales
 from plans.scene import read_scene
 
 from conftest import EXAMPLES, toml_text

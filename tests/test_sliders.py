@@ -27,7 +27,8 @@ import pytest
 from plans.kinematics import analyse, link_angles, sliding
 from plans.kinematics.state import J
 from plans.model import build_mechanism
-from plans.pipeline import report, solve_scene, _scales
+from plans.pipeline import report, solve_scene
+from plans.pipeline.scales import scene_scales as _scales
 from plans.scene import parse_scene, read_scene
 from plans.structure import analyse_structure
 

@@ -30,7 +30,7 @@ from plans.constructions.plans import PRIME
 from plans.kinematics import analyse, special
 from plans.model import build_mechanism
 from plans.cli import main
-from plans.pipeline import _similarity
+from plans.pipeline.sheets.plans import similarity_failures as _similarity
 from plans.scene import FRAME, parse_scene
 from plans.structure import ComplexGroup, analyse_structure
 

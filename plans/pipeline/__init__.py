@@ -1,0 +1,105 @@
+"""The whole path for one scene: read → model → structure → kinematics → constructions →
+SVG and JSON text → files. Nothing is written until everything has been computed and
+checked, so a failing scene leaves no partial files behind.
+
+This module only sequences the stages and collects the files: the solving in :mod:`.stages`,
+the scales in :mod:`.scales`, the motion's checks and warnings in :mod:`.motion_checks`, each
+family of sheets in :mod:`.sheets` (one module, one entry function each), the JSON report in
+:mod:`.json_report`, the result types in :mod:`.result`, file stems in :mod:`.naming`.
+
+:func:`render` (``plans.render``) is the Python API: a :class:`~plans.scene.Scene` or a scene
+file in, :class:`Sheets` out — the sheets display themselves in Jupyter and ``.save`` writes
+them (SVG, PNG, PDF and the JSON report), all or nothing."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+from ..drawing import Style
+from ..errors import PlansError
+from ..scene import Scene, read_scene
+from .json_report import report, report_text
+from .motion_checks import check_triads, motion_warnings
+from .naming import MAX_STEM_CHARS, checked_stem, stem_of
+from .rest import at_rest
+from .result import Rendered, Sheet, Sheets
+from .scales import scene_scales
+from .sheets.centres import centres_sheets
+from .sheets.cycle import cycle_sheets
+from .sheets.forces import LEVER_RTOL, force_sheets
+from .sheets.koshel import koshel_sheets
+from .sheets.page import Page
+from .sheets.plans import plan_sheets
+from .sheets.scheme import scheme_sheets
+from .stages import force_analysis, record_stages, solve_motion, solve_scene
+
+__all__ = ["Rendered", "Sheet", "Sheets", "render", "render_scene", "report", "solve_scene", "record_stages",
+           "stem_of", "at_rest", "read_scene", "LEVER_RTOL", "MAX_STEM_CHARS"]
+
+
+def render_scene(path: str | Path, style: Style = Style()) -> Rendered:
+    """Compute every file of a scene file (nothing is written); the files are named after the
+    file's stem.
+
+    A mechanism at rest (the drive stands) gets, instead of each plan with nothing to draw, a
+    sheet saying so, and a warning; so does Koshel's plan where its construction degenerates
+    (:class:`~plans.errors.ConstructionError`) or fails its check. Every other sheet is drawn."""
+    return _render(read_scene(path), stem=Path(path).stem, where=str(path), style=style)
+
+
+def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rendered:
+    """Every file of a scene already read, named ``<stem>…``; ``where`` (the scene's file, or
+    None) locates error messages. Nothing here reads or writes a file."""
+    path = where or f"scene {scene.title!r}"     # the prefix of the messages below
+    try:
+        motion, cycle = solve_motion(scene)
+        rest = at_rest(motion)
+        scales = scene_scales(scene, motion, rest)
+        forces = force_analysis(scene, motion)
+    except PlansError as exc:
+        raise exc.in_file(where) if where and hasattr(exc, "in_file") else exc
+    check_triads(motion, path)
+    warnings = motion_warnings(scene, motion, rest, stem)
+    files: dict[str, str] = {}
+    own = range(len(motion)) if cycle is None else scene.cycle.at    # positions with sheets of their own
+    for i in own:
+        page = Page.at(scene, motion, i, stem, style)
+        files.update(scheme_sheets(page, scales))
+        files.update(centres_sheets(page))
+        koshel, not_drawn = koshel_sheets(page, rest[0])
+        files.update(koshel)
+        warnings.extend(not_drawn)
+        files.update(plan_sheets(page, scales, rest, path))
+    levers = {}
+    if forces is not None:
+        sheets, levers = force_sheets(scene, motion, forces, scales, own, stem=stem, path=path, style=style)
+        files.update(sheets)
+    data = report(scene, motion, scales, forces, levers)
+    if cycle is not None:
+        sheets, data["cycle"] = cycle_sheets(scene, cycle, scales, stem, style)
+        files.update(sheets)
+    files[f"{stem}.json"] = report_text(data)
+    return Rendered(stem, files, motion, scales, tuple(warnings), forces)
+
+
+def render(scene: Scene | str | os.PathLike, *, style: Style = Style(), stem: str | None = None) -> Sheets:
+    """Render a scene: a :class:`~plans.scene.Scene` (from :func:`~plans.scene.read_scene` or
+    :func:`~plans.scene.parse_scene`) or the path of a scene file. Nothing is read but that
+    file, nothing is written (see :meth:`Sheets.save`).
+
+    The files are named ``<stem>-<sheet>.svg`` and ``<stem>.json``: ``stem`` when given, else the
+    scene file's stem (a Scene read from a file keeps it, so both ways give the same files byte
+    for byte), else one made from the title (``"Crank-slider mechanism"`` → ``crank-slider_mechanism``).
+    Errors are the :class:`~plans.errors.PlansError` of ``plans render``."""
+    if isinstance(scene, (str, os.PathLike)):
+        path = Path(scene)
+        rendered = render_scene(path, style) if stem is None else \
+            _render(read_scene(path), stem=checked_stem(stem), where=str(path), style=style)
+    elif isinstance(scene, Scene):
+        name = checked_stem(stem) if stem is not None else \
+            Path(scene.file).stem if scene.file else stem_of(scene.title)
+        rendered = _render(scene, stem=name, where=scene.file, style=style)
+    else:
+        raise TypeError(f"plans.render takes a Scene or the path of a scene file, not {type(scene).__name__}")
+    return Sheets(rendered.stem, rendered.files, rendered.motion, rendered.scales, rendered.warnings, rendered.forces)

@@ -1,0 +1,29 @@
+"""File stems: the part of every file name of a scene before ``-<sheet>.svg`` and ``.json``.
+
+Pure text; imports nothing of plans but plans.errors."""
+
+from __future__ import annotations
+
+import re
+
+from ..errors import OutputError
+
+__all__ = ["MAX_STEM_CHARS", "stem_of", "checked_stem"]
+
+#: Longest stem made from a title (characters).
+MAX_STEM_CHARS = 60
+
+
+def stem_of(title: str) -> str:
+    """A file stem from a title: lower case, every run of characters other than letters,
+    digits, ``-`` and ``_`` one ``_``, at most :data:`MAX_STEM_CHARS` characters; ``mechanism``
+    when nothing is left."""
+    stem = re.sub(r"[^\w-]+", "_", title.strip().lower())[:MAX_STEM_CHARS].strip("_-")
+    return stem or "mechanism"
+
+
+def checked_stem(stem: str) -> str:
+    """``stem`` when it names files in one folder (no separator, not empty, ``.`` or ``..``)."""
+    if not isinstance(stem, str) or not stem or stem in (".", "..") or re.search(r"[/\\\x00]", stem):
+        raise OutputError(f"stem {stem!r} cannot name a file; give a plain name such as 'four_bar'", key="stem")
+    return stem

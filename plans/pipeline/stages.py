@@ -1,0 +1,75 @@
+"""The pipeline's computing stages for one scene: the motion, solved to the order its drawings
+need (one analysis, or the revolution of ``[drive] positions``), and the force analysis; and
+:func:`record_stages`, which records them as they run.
+
+This is the pipeline's one kinematics step: of plans.kinematics it calls analyse and
+solve_cycle only. It imports nothing of the pipeline's sheets, report or API."""
+
+from __future__ import annotations
+
+import contextlib
+from typing import Iterator
+
+from ..kinematics import Motion, analyse
+from ..kinematics.cycle import Cycle, solve_cycle
+from ..kinetostatics import Forces, solve_forces
+from ..model import build_mechanism
+from ..scene import Scene
+from ..structure import analyse_structure
+
+__all__ = ["record_stages", "solve_scene", "solve_motion", "force_analysis"]
+
+#: The stages run, in order, while :func:`record_stages` is active (None otherwise).
+_stages: list[str] | None = None
+#: The kinematic stages an order of analysis runs.
+_ORDER_STAGES = ("positions", "velocities", "accelerations")
+
+
+@contextlib.contextmanager
+def record_stages() -> Iterator[list[str]]:
+    """Record the computing stages each render runs (``positions``, ``velocities``,
+    ``accelerations``, ``forces``), in order, into the list it yields."""
+    global _stages
+    previous, _stages = _stages, []
+    try:
+        yield _stages
+    finally:
+        _stages = previous
+
+
+def _ran(*stages: str) -> None:
+    if _stages is not None:
+        _stages.extend(stages)
+
+
+def solve_scene(scene: Scene) -> Motion:
+    """Solve a scene to the order its drawings need (scheme only: positions; the senses of
+    ω and ε on the scheme: accelerations)."""
+    return solve_motion(scene)[0]
+
+
+def solve_motion(scene: Scene) -> tuple[Motion, Cycle | None]:
+    """The scene's motion and, with ``[drive] positions``, its solved revolution (the motion
+    is then the revolution's N positions)."""
+    mech = build_mechanism(scene)
+    structure = analyse_structure(mech)
+    order = 2 if "acceleration" in scene.draw or scene.senses else \
+        1 if {"velocity", "centres", "velocities"} & set(scene.draw) else 0
+    if scene.wants_forces:      # the power balance needs velocities, inertia accelerations
+        order = max(order, 2 if scene.wants_inertia else 1)
+    _ran(*_ORDER_STAGES[:order + 1])
+    c = scene.cycle
+    if c is None:
+        return analyse(mech, structure, order=order), None
+    cycle = solve_cycle(mech, structure, positions=c.positions, output=c.output, order=order,
+                        start=None if c.start == "extreme" else scene.drive.values[0],
+                        dense_order=2 if "diagrams" in scene.draw else 0)
+    return cycle.motion, cycle
+
+
+def force_analysis(scene: Scene, motion: Motion) -> Forces | None:
+    """The force analysis when the scene asks for it (force plans, the lever, or [balance])."""
+    if not scene.wants_forces:
+        return None
+    _ran("forces")
+    return solve_forces(motion, scene)
