@@ -40,7 +40,7 @@ def _speeds(base: float) -> tuple[float, ...]:
 
 
 def _draw(h: Handout, rng: np.random.Generator, number: int) -> Variant:
-    """One random variant (see the module docstring); the draws are made in a fixed order."""
+    """One random variant (see :mod:`plans.handout`); the draws are made in a fixed order."""
     base_lengths = h.base_data.get("lengths", {})
     lengths = {n: _round3(float(x) * rng.uniform(1 - LENGTH_SPREAD, 1 + LENGTH_SPREAD))
                for n, x in base_lengths.items()}

@@ -94,7 +94,7 @@ def _touches(box, point) -> bool:
 
 
 def measure_layout(svg_text: str | bytes) -> LayoutReport:
-    """The layout faults of one SVG sheet (see the module docstring)."""
+    """The layout faults of one SVG sheet (see :mod:`plans.layout`)."""
     root = ET.fromstring(svg_text)
     if _local(root.tag) != "svg":
         raise ValueError("not an SVG document")

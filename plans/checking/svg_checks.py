@@ -1,86 +1,26 @@
-"""Measuring drawings: every tagged vector of an SVG, and every construction with shapely.
+"""The checks of one SVG file (:func:`inspect_svg`, :func:`check_svg`): every tagged vector's
+length and direction, the vector equations' closure, the file's own contract, and a force
+plan's or Zhukovsky's lever's balance (see :mod:`plans.checking`).
 
-``inspect_svg`` reads an SVG back (ElementTree) and checks, plan by plan (a ``<g>`` with
-``data-mu``), what the drawing claims:
-
-1. **length** — each ``<line data-quantity>`` measured in millimetres × the plan's
-   ``data-mu`` equals ``data-value`` within ``mu · 2√2 · precision + 1e-9 · value`` (two end
-   points, each rounded by at most ``precision`` per coordinate);
-2. **direction** — the drawn direction ``(x2 − x1, y2 − y1)`` agrees with
-   ``data-direction`` (degrees, SVG paper frame: x right, y down, tail → head). The exact
-   vector is ``e = (value/μ)·(cos θ, sin θ)`` mm; two rounded ends move the drawn vector by at
-   most ``r = 2√2 · precision`` mm, so the angle between drawn and exact may reach
-   ``asin(r/|e|)`` ≈ ``2√2 · precision / |e|`` (+ 1e-9 rad): short vectors get a looser
-   angular tolerance, and a vector shorter than ``r`` has no measurable direction;
-3. **closure** — the vector equations close graphically. Each vector's ends are points
-   (images) named twice: by the writer's labels ``data-from``/``data-to`` and by the
-   quantity's name — ``v:X`` runs from the pole to x; ``v:X/Y`` (``a:X/Y``, ``r:X/Y``) from
-   y to x; ``a:X/Y:n`` from y to n_XY and ``a:X/Y:t`` from n_XY to x; ``a:X/Y:cor`` from y to
-   k_XY and ``a:X/Y:r`` from k_XY to x. Ends named alike (by either name) form one point,
-   and all its ends must coincide within ``2√2 · precision`` — so ``p→a`` plus ``a→b`` ends
-   where ``p→b`` ends. A name of another form adds no equation (never a failure); each
-   plan's number of equations checked is reported (:attr:`SvgReport.equations`);
-4. **the file itself** — the user unit is the millimetre (``width``/``height`` in mm equal
-   to the ``viewBox``, origin 0 0); no ``transform`` (attribute or CSS) on a tagged line
-   or any element above it, whose ancestors are ``<g>`` and the root ``<svg>`` only;
-   ``data-mu`` positive and finite; ``data-value`` finite and ≥ 0; every ``<line>`` of a
-   plan either a tagged vector or a construction line (``data-construction``).
-
-**Precision.** The tolerance never comes from the file. ``plans check`` measures against
-:data:`WRITER_PRECISION`, the rounding of plans' own writer (``Style().precision``); a
-library caller that wrote with another :class:`~plans.drawing.style.Style` passes its
-``precision``, and with ``precision=None`` it is the rounding of the coordinates actually
-written (``0.5 · 10^-D``, D the most decimals of any vector coordinate). A root
-``data-precision`` looser than that precision, or not a positive number, is a failure.
-
-**Sheets.** Each plan's ``<g>`` states how many vectors its writer drew
-(``data-vectors``); the tagged lines found must be that many. A file whose only plan group is
-the scheme (``data-plan="scheme"``) has nothing to measure: it is reported as a scheme and is
-not a failure; nor is a plan drawn with no vector (``data-vectors="0"``: the pole alone — a
-mechanism at rest, or a construction not drawn at that position, as its subtitle says). Any
-other file without a tagged vector — a plan whose tags were removed, or an SVG not written by
-plans — fails ("no tagged vectors: not a plan written by plans"). A centres sheet's measured
-segments ``r:X/Pj`` run from the centre Pj to the point X and are checked like vectors.
-**Kinetostatics.** A force plan (``data-plan="force"``, μ = μF in N/mm) is measured like
-any plan (length × μF = the force in N, direction, ends named alike by their vertex labels
-coincide — so a whole reaction ends where its two components do, and a reaction between the
-group's links joins the vertices it must); besides, its sides (``data-role="side"``) must
-sum to zero: drawn, within ``n · 2√2 · precision`` mm for n sides, and as recorded (value ×
-direction), within :data:`FORCE_CLOSURE_REL` of Σ values. Zhukovsky's lever
-(``data-plan="lever"``, μ = μF, the pole's paper position in ``data-pole``): every force is
-measured as a vector; its arm about the pole — the distance from the pole to the line
-through its drawn tail in its recorded direction — must equal its ``data-h`` within
-``2√2 · precision`` (two rounded points); each drawn arm (``data-construction="arm"``,
-``data-arm`` = the force) must start at the pole, end on that line and be that long; and the
-moments ± F·h with the drawn arms must sum to zero, Σ M_p = 0, within Σ F · 2√2 · precision
-(+ 1e-9 relative). Each of these is a :class:`Check`; a failed one is also a problem.
-
-A group with ``data-plan="bound"`` holds vectors drawn at their points of application on a
-scheme (Koshel's V_S1, V_S2 drawn from S1, S2 in the plan's scale): each is measured for
-length and direction, but its ends are no plan images, so it adds no closure equation.
+Knows :mod:`.report`, :mod:`.reading`, the drawing's :class:`~plans.drawing.style.Style` (for
+the writer's precision) and the errors; must not import anything above the drawing.
 """
 
 from __future__ import annotations
 
 import math
-import re
 import xml.etree.ElementTree as ET
-from dataclasses import dataclass, field
-from decimal import Decimal, InvalidOperation
 from pathlib import Path
 
-from shapely.geometry import LineString, Point
+from ..drawing.style import Style
+from ..errors import DrawingError
+from .reading import (_SVG, _TRANSFORM, _Union, _decimals, _ends, _line_data, _number, _paper_problems, _point_name,
+                      _transformed)
+from .report import Check, Closure, Measurement, SvgReport
 
-from .constructions.plans import Plan
-from .drawing.style import Style
-from .errors import DrawingError
+__all__ = ["WRITER_PRECISION", "FORCE_CLOSURE_REL", "FORCE", "LEVER", "MIN_ARM_MM", "SCHEME", "BOUND", "EMPTY",
+           "inspect_svg", "check_svg"]
 
-__all__ = ["Measurement", "Closure", "Check", "SvgReport", "inspect_svg", "check_svg", "check_plan", "GEOMETRY_TOL_MM",
-           "WRITER_PRECISION"]
-
-_SVG = "{http://www.w3.org/2000/svg}"
-#: Largest distance (mm) between a plan image and the construction lines it must lie on.
-GEOMETRY_TOL_MM = 1e-6
 #: Rounding of one coordinate written by plans' own writer, mm: what ``plans check`` measures against.
 WRITER_PRECISION = Style().precision
 #: Relative slack on lengths (SI) and on the angular tolerance (rad) for floating-point noise.
@@ -94,187 +34,17 @@ FORCE, LEVER = "force", "lever"
 MIN_ARM_MM = 0.5
 #: Plans whose vectors are measured; a group with another ``data-plan`` is a plan too unless "scheme".
 SCHEME = "scheme"
-#: Vectors drawn at their points of application (measured, never closed: see the module docstring).
+#: Vectors drawn at their points of application (measured, never closed: see plans.checking).
 BOUND = "bound"
 #: Kind of a plan sheet its writer drew with no vector (``data-vectors="0"``): the pole alone.
 EMPTY = "empty"
 #: Root ids written for plan sheets (a sheet claiming to be a plan must carry tagged vectors).
 _PLAN_IDS = ("velocity", "acceleration", "koshel", "centres")
-_NAME = re.compile(r"^(?P<sym>[A-Za-z]+):(?P<x>[^/:]+)(?:/(?P<y>[^/:]+))?(?::(?P<comp>n|t|cor|r))?$")
-_TRANSFORM = re.compile(r"transform", re.IGNORECASE)
-
-
-@dataclass(frozen=True)
-class Measurement:
-    """One measured vector: drawn length (mm) × μ against the exact value (SI), and its drawn
-    direction against the recorded one (``angle_error`` rad; NaN when unmeasurable).
-    ``problem`` names what makes it unmeasurable (a non-finite value, no direction …)."""
-
-    quantity: str
-    plan: str
-    length_mm: float
-    mu: float
-    value: float
-    tolerance: float
-    angle_error: float = 0.0
-    angle_tolerance: float = math.pi
-    problem: str = ""
-
-    @property
-    def measured(self) -> float:
-        return self.length_mm * self.mu
-
-    @property
-    def error(self) -> float:
-        err = abs(self.measured - self.value)
-        return err if math.isfinite(err) else math.inf
-
-    @property
-    def length_ok(self) -> bool:
-        return self.error <= self.tolerance
-
-    @property
-    def direction_ok(self) -> bool:
-        return math.isnan(self.angle_error) or self.angle_error <= self.angle_tolerance
-
-    @property
-    def ok(self) -> bool:
-        return not self.problem and self.length_ok and self.direction_ok
-
-
-@dataclass(frozen=True)
-class Closure:
-    """One point of a plan reached by several vector ends: ``ends`` (``quantity tail|head``),
-    their largest distance apart ``gap_mm`` and the tolerance."""
-
-    plan: str
-    point: str
-    ends: tuple[str, ...]
-    gap_mm: float
-    tolerance_mm: float
-
-    @property
-    def ok(self) -> bool:
-        return self.gap_mm <= self.tolerance_mm
-
-
-@dataclass(frozen=True)
-class Check:
-    """One kinetostatic check of a force plan or lever: ``what`` (``Σ sides`` …, ``arm of F:bal``,
-    ``Σ M_p``), the deviation found and its tolerance, in ``unit`` (mm, N, N·mm)."""
-
-    plan: str
-    what: str
-    deviation: float
-    tolerance: float
-    unit: str
-
-    @property
-    def ok(self) -> bool:
-        return math.isfinite(self.deviation) and self.deviation <= self.tolerance
-
-
-@dataclass
-class SvgReport:
-    """Everything ``plans check`` found in one file. ``kind``: ``plan`` (tagged vectors),
-    ``scheme`` (a scheme sheet: nothing to measure), ``empty`` (a plan its writer drew with no
-    vector, ``data-vectors="0"``: the pole alone) or ``none`` (nothing tagged: a failure).
-    ``equations``: plan group id → number of closure equations checked."""
-
-    path: str
-    kind: str
-    precision: float
-    measurements: list[Measurement] = field(default_factory=list)
-    closures: list[Closure] = field(default_factory=list)
-    problems: list[str] = field(default_factory=list)
-    equations: dict[str, int] = field(default_factory=dict)
-    checks: list[Check] = field(default_factory=list)
-
-    @property
-    def ok(self) -> bool:
-        return (self.kind != "none" and not self.problems and all(m.ok for m in self.measurements)
-                and all(c.ok for c in self.closures) and all(c.ok for c in self.checks))
-
-
-def _number(text: str | None) -> float | None:
-    try:
-        return float(text)
-    except (TypeError, ValueError):
-        return None
-
-
-def _decimals(text: str) -> int:
-    try:
-        return max(0, -int(Decimal(text.strip()).as_tuple().exponent))
-    except (InvalidOperation, ValueError, TypeError, AttributeError):
-        return 0
-
-
-def _mm(text: str | None) -> float | None:
-    if text is None or not text.strip().endswith("mm"):
-        return None
-    return _number(text.strip()[:-2])
-
-
-def _paper_problems(root: ET.Element) -> list[str]:
-    """The user unit must be the millimetre: width/height in mm equal to the viewBox at 0 0."""
-    w, h = _mm(root.get("width")), _mm(root.get("height"))
-    box = (root.get("viewBox") or "").replace(",", " ").split()
-    vals = [_number(b) for b in box]
-    if w is None or h is None or len(vals) != 4 or None in vals:
-        return ["the root <svg> needs width and height in mm and a viewBox (one user unit = one mm)"]
-    if vals[0] != 0 or vals[1] != 0 or not math.isclose(vals[2], w, rel_tol=1e-9) \
-            or not math.isclose(vals[3], h, rel_tol=1e-9):
-        return [f"viewBox {' '.join(box)} does not match {root.get('width')} × {root.get('height')}: "
-                "the user unit is not the millimetre"]
-    return []
-
-
-def _transformed(el: ET.Element) -> bool:
-    return el.get("transform") is not None or bool(_TRANSFORM.search(el.get("style") or ""))
-
-
-def _ends(quantity: str) -> tuple[tuple | None, tuple | None, bool]:
-    """The points a quantity's name says its tail and head are (None: not known), and
-    whether it is an absolute vector (from the pole)."""
-    m = _NAME.match(quantity)
-    if m is None:
-        return None, None, False
-    sym, x, y, comp = m["sym"], m["x"], m["y"], m["comp"]
-    if y is None:
-        if comp is None and sym in ("v", "a"):
-            return ("pole",), ("pt", x), True
-        return None, None, False
-    if comp is None:
-        return ("pt", y), ("pt", x), False
-    mid = ("n" if comp in ("n", "t") else "k", x, y)
-    return (("pt", y), mid, False) if comp in ("n", "cor") else (mid, ("pt", x), False)
-
-
-def _point_name(token: tuple) -> str:
-    if token[0] == "pole":
-        return "pole"
-    return token[1] if token[0] == "pt" else f"{token[0]}_{token[1]}{token[2]}"
-
-
-class _Union:
-    def __init__(self):
-        self.up: dict = {}
-
-    def find(self, a):
-        self.up.setdefault(a, a)
-        while self.up[a] != a:
-            self.up[a] = self.up[self.up[a]]
-            a = self.up[a]
-        return a
-
-    def join(self, a, b):
-        self.up[self.find(a)] = self.find(b)
 
 
 def inspect_svg(path: str | Path, precision: float | None = WRITER_PRECISION) -> SvgReport:
-    """Check every tagged vector, every vector equation and the file's own geometry (see the
-    module docstring). ``precision``: the rounding (mm) the file was written with — plans'
+    """Check every tagged vector, every vector equation and the file's own geometry (see
+    :mod:`plans.checking`). ``precision``: the rounding (mm) the file was written with — plans'
     writer by default; None: that of the coordinates actually written. Raises
     :class:`DrawingError` only when the file cannot be read as XML."""
     path = Path(path)
@@ -413,15 +183,6 @@ def _add(report: SvgReport, check: Check) -> None:
                                f"(tolerance {check.tolerance:.2g} {check.unit})")
 
 
-def _line_data(line: ET.Element):
-    """(x1, y1, x2, y2), value, direction (rad) of a tagged line, or None when unreadable."""
-    xy = [_number(line.get(k)) for k in ("x1", "y1", "x2", "y2")]
-    value, theta = _number(line.get("data-value")), _number(line.get("data-direction"))
-    if None in xy or value is None or theta is None or not all(math.isfinite(c) for c in xy + [value, theta]):
-        return None
-    return xy, value, math.radians(theta)
-
-
 def _force_closure(report: SvgReport, gid: str, lines: list[ET.Element], r: float) -> None:
     """A force polygon's sides sum to zero, drawn and as recorded."""
     sides = [d for d in (_line_data(l) for l in lines if l.get("data-role") == "side") if d is not None]
@@ -439,7 +200,7 @@ def _force_closure(report: SvgReport, gid: str, lines: list[ET.Element], r: floa
 
 
 def _lever(report: SvgReport, g: ET.Element, gid: str, lines: list[ET.Element], r: float) -> None:
-    """Arms and Σ M_p = 0 of Zhukovsky's lever (see the module docstring)."""
+    """Arms and Σ M_p = 0 of Zhukovsky's lever (see :mod:`plans.checking`)."""
     pole = [_number(c) for c in (g.get("data-pole") or "").split(",")]
     if len(pole) != 2 or None in pole or not all(math.isfinite(c) for c in pole):
         report.problems.append(f"plan {gid}: the lever's data-pole {g.get('data-pole')!r} is not a paper point x,y")
@@ -525,45 +286,3 @@ def check_svg(path: str | Path, precision: float | None = None) -> list[Measurem
     if report.problems:
         raise DrawingError(f"{path}: {report.problems[0]}")
     return report.measurements
-
-
-def check_plan(plan: Plan, tol: float = GEOMETRY_TOL_MM) -> list[str]:
-    """Geometric checks of a constructed plan with shapely; returns the failures (empty = good).
-
-    - every vector lies on the construction line of its direction (⊥ link, ∥ guide);
-    - the two construction lines of each group meet at an image of the plan;
-    - the images of every link with three or more points form a figure similar to it.
-    """
-    failures = []
-    vectors = {v.quantity: v for v in plan.vectors}
-    for line in plan.lines:
-        geom = LineString([line.start, line.end])
-        v = vectors.get(line.quantity)
-        if v is not None:
-            for end in (v.tail, v.head):
-                if geom.distance(Point(end)) > tol:
-                    failures.append(f"{line.quantity}: end {end} is {geom.distance(Point(end)):.3g} mm off its line")
-    by_group: dict[str, list[LineString]] = {}
-    for line in plan.lines:
-        by_group.setdefault(line.group, []).append(LineString([line.start, line.end]))
-    images = [Point(p.xy) for p in plan.points]
-    for group, lines in by_group.items():
-        if len(lines) != 2 or group == "I":
-            continue
-        meet = lines[0].intersection(lines[1])
-        if meet.is_empty or meet.geom_type != "Point":
-            failures.append(f"group {group}: construction lines do not meet in one point")
-        elif min(meet.distance(p) for p in images) > tol:
-            failures.append(f"group {group}: construction lines meet {min(meet.distance(p) for p in images):.3g} mm "
-                            "from every image")
-    return failures
-
-
-def similarity_ratio(figure: list[tuple[float, float]], image: list[tuple[float, float]]) -> float:
-    """Largest relative deviation of the side ratios image/figure from their mean (0 = similar)."""
-    sides = []
-    for poly in (figure, image):
-        sides.append([math.dist(poly[i], poly[j]) for i in range(len(poly)) for j in range(i + 1, len(poly))])
-    ratios = [b / a for a, b in zip(*sides) if a > 0]
-    mean = sum(ratios) / len(ratios)
-    return max(abs(r - mean) for r in ratios) / mean if mean > 0 else 0.0
