@@ -2,7 +2,8 @@
 plan reached by several vector ends (:class:`Closure`), a kinetostatic check (:class:`Check`)
 and the file's whole :class:`SvgReport`. Lengths in paper mm, values in SI, angles in rad.
 
-Knows nothing of plans; must not import any other plans module.
+Part of :mod:`plans.checking`, which re-exports these names. Knows nothing of plans; must not
+import any other plans module.
 """
 
 from __future__ import annotations

@@ -2,7 +2,8 @@
 the points a quantity's name says its tail and head are (``v:X``, ``a:X/Y:n`` …), a tagged
 line's coordinates, value and direction, and the union of ends named alike.
 
-Knows nothing of plans; must not import any other plans module.
+Part of :mod:`plans.checking` (its private helpers). Knows nothing of plans; must not import
+any other plans module.
 """
 
 from __future__ import annotations

@@ -2,8 +2,8 @@
 construction line, each group's lines meeting at an image) and the similarity of a link's
 figure and its image (:func:`similarity_ratio`). Paper mm.
 
-Knows the constructions' :class:`~plans.constructions.plans.Plan`; must not import anything
-above the constructions.
+Part of :mod:`plans.checking`, which re-exports these names. Knows the constructions'
+:class:`~plans.constructions.plans.Plan`; must not import anything above the constructions.
 """
 
 from __future__ import annotations
@@ -12,7 +12,7 @@ import math
 
 from shapely.geometry import LineString, Point
 
-from ..constructions.plans import Plan
+from .constructions.plans import Plan
 
 __all__ = ["GEOMETRY_TOL_MM", "check_plan", "similarity_ratio"]
 
