@@ -58,29 +58,32 @@ moments ± F·h with the drawn arms must sum to zero, Σ M_p = 0, within Σ F ·
 A group with ``data-plan="bound"`` holds vectors drawn at their points of application on a
 scheme (Koshel's V_S1, V_S2 drawn from S1, S2 in the plan's scale): each is measured for
 length and direction, but its ends are no plan images, so it adds no closure equation.
+
+This module holds the checks of a file (:func:`inspect_svg`, :func:`check_svg`). Beside it:
+:mod:`plans.checking_report` (what is found: :class:`Measurement`, :class:`Closure`,
+:class:`Check`, :class:`SvgReport`), :mod:`plans.checking_read` (reading tagged vectors back)
+and :mod:`plans.checking_geometry` (:func:`check_plan`, :func:`similarity_ratio`: shapely
+checks of a constructed plan), all re-exported here. Knows those, the drawing's
+:class:`~plans.drawing.style.Style` (the writer's precision) and the errors; must not import
+the pipeline or anything above it.
 """
 
 from __future__ import annotations
 
 import math
-import re
 import xml.etree.ElementTree as ET
-from dataclasses import dataclass, field
-from decimal import Decimal, InvalidOperation
 from pathlib import Path
 
-from shapely.geometry import LineString, Point
-
-from .constructions.plans import Plan
+from .checking_geometry import GEOMETRY_TOL_MM, check_plan, similarity_ratio
+from .checking_read import (_SVG, _TRANSFORM, _Union, _decimals, _ends, _line_data, _number, _paper_problems,
+                            _point_name, _transformed)
+from .checking_report import Check, Closure, Measurement, SvgReport
 from .drawing.style import Style
 from .errors import DrawingError
 
 __all__ = ["Measurement", "Closure", "Check", "SvgReport", "inspect_svg", "check_svg", "check_plan", "GEOMETRY_TOL_MM",
-           "WRITER_PRECISION"]
+           "WRITER_PRECISION", "similarity_ratio"]
 
-_SVG = "{http://www.w3.org/2000/svg}"
-#: Largest distance (mm) between a plan image and the construction lines it must lie on.
-GEOMETRY_TOL_MM = 1e-6
 #: Rounding of one coordinate written by plans' own writer, mm: what ``plans check`` measures against.
 WRITER_PRECISION = Style().precision
 #: Relative slack on lengths (SI) and on the angular tolerance (rad) for floating-point noise.
@@ -100,176 +103,6 @@ BOUND = "bound"
 EMPTY = "empty"
 #: Root ids written for plan sheets (a sheet claiming to be a plan must carry tagged vectors).
 _PLAN_IDS = ("velocity", "acceleration", "koshel", "centres")
-_NAME = re.compile(r"^(?P<sym>[A-Za-z]+):(?P<x>[^/:]+)(?:/(?P<y>[^/:]+))?(?::(?P<comp>n|t|cor|r))?$")
-_TRANSFORM = re.compile(r"transform", re.IGNORECASE)
-
-
-@dataclass(frozen=True)
-class Measurement:
-    """One measured vector: drawn length (mm) × μ against the exact value (SI), and its drawn
-    direction against the recorded one (``angle_error`` rad; NaN when unmeasurable).
-    ``problem`` names what makes it unmeasurable (a non-finite value, no direction …)."""
-
-    quantity: str
-    plan: str
-    length_mm: float
-    mu: float
-    value: float
-    tolerance: float
-    angle_error: float = 0.0
-    angle_tolerance: float = math.pi
-    problem: str = ""
-
-    @property
-    def measured(self) -> float:
-        return self.length_mm * self.mu
-
-    @property
-    def error(self) -> float:
-        err = abs(self.measured - self.value)
-        return err if math.isfinite(err) else math.inf
-
-    @property
-    def length_ok(self) -> bool:
-        return self.error <= self.tolerance
-
-    @property
-    def direction_ok(self) -> bool:
-        return math.isnan(self.angle_error) or self.angle_error <= self.angle_tolerance
-
-    @property
-    def ok(self) -> bool:
-        return not self.problem and self.length_ok and self.direction_ok
-
-
-@dataclass(frozen=True)
-class Closure:
-    """One point of a plan reached by several vector ends: ``ends`` (``quantity tail|head``),
-    their largest distance apart ``gap_mm`` and the tolerance."""
-
-    plan: str
-    point: str
-    ends: tuple[str, ...]
-    gap_mm: float
-    tolerance_mm: float
-
-    @property
-    def ok(self) -> bool:
-        return self.gap_mm <= self.tolerance_mm
-
-
-@dataclass(frozen=True)
-class Check:
-    """One kinetostatic check of a force plan or lever: ``what`` (``Σ sides`` …, ``arm of F:bal``,
-    ``Σ M_p``), the deviation found and its tolerance, in ``unit`` (mm, N, N·mm)."""
-
-    plan: str
-    what: str
-    deviation: float
-    tolerance: float
-    unit: str
-
-    @property
-    def ok(self) -> bool:
-        return math.isfinite(self.deviation) and self.deviation <= self.tolerance
-
-
-@dataclass
-class SvgReport:
-    """Everything ``plans check`` found in one file. ``kind``: ``plan`` (tagged vectors),
-    ``scheme`` (a scheme sheet: nothing to measure), ``empty`` (a plan its writer drew with no
-    vector, ``data-vectors="0"``: the pole alone) or ``none`` (nothing tagged: a failure).
-    ``equations``: plan group id → number of closure equations checked."""
-
-    path: str
-    kind: str
-    precision: float
-    measurements: list[Measurement] = field(default_factory=list)
-    closures: list[Closure] = field(default_factory=list)
-    problems: list[str] = field(default_factory=list)
-    equations: dict[str, int] = field(default_factory=dict)
-    checks: list[Check] = field(default_factory=list)
-
-    @property
-    def ok(self) -> bool:
-        return (self.kind != "none" and not self.problems and all(m.ok for m in self.measurements)
-                and all(c.ok for c in self.closures) and all(c.ok for c in self.checks))
-
-
-def _number(text: str | None) -> float | None:
-    try:
-        return float(text)
-    except (TypeError, ValueError):
-        return None
-
-
-def _decimals(text: str) -> int:
-    try:
-        return max(0, -int(Decimal(text.strip()).as_tuple().exponent))
-    except (InvalidOperation, ValueError, TypeError, AttributeError):
-        return 0
-
-
-def _mm(text: str | None) -> float | None:
-    if text is None or not text.strip().endswith("mm"):
-        return None
-    return _number(text.strip()[:-2])
-
-
-def _paper_problems(root: ET.Element) -> list[str]:
-    """The user unit must be the millimetre: width/height in mm equal to the viewBox at 0 0."""
-    w, h = _mm(root.get("width")), _mm(root.get("height"))
-    box = (root.get("viewBox") or "").replace(",", " ").split()
-    vals = [_number(b) for b in box]
-    if w is None or h is None or len(vals) != 4 or None in vals:
-        return ["the root <svg> needs width and height in mm and a viewBox (one user unit = one mm)"]
-    if vals[0] != 0 or vals[1] != 0 or not math.isclose(vals[2], w, rel_tol=1e-9) \
-            or not math.isclose(vals[3], h, rel_tol=1e-9):
-        return [f"viewBox {' '.join(box)} does not match {root.get('width')} × {root.get('height')}: "
-                "the user unit is not the millimetre"]
-    return []
-
-
-def _transformed(el: ET.Element) -> bool:
-    return el.get("transform") is not None or bool(_TRANSFORM.search(el.get("style") or ""))
-
-
-def _ends(quantity: str) -> tuple[tuple | None, tuple | None, bool]:
-    """The points a quantity's name says its tail and head are (None: not known), and
-    whether it is an absolute vector (from the pole)."""
-    m = _NAME.match(quantity)
-    if m is None:
-        return None, None, False
-    sym, x, y, comp = m["sym"], m["x"], m["y"], m["comp"]
-    if y is None:
-        if comp is None and sym in ("v", "a"):
-            return ("pole",), ("pt", x), True
-        return None, None, False
-    if comp is None:
-        return ("pt", y), ("pt", x), False
-    mid = ("n" if comp in ("n", "t") else "k", x, y)
-    return (("pt", y), mid, False) if comp in ("n", "cor") else (mid, ("pt", x), False)
-
-
-def _point_name(token: tuple) -> str:
-    if token[0] == "pole":
-        return "pole"
-    return token[1] if token[0] == "pt" else f"{token[0]}_{token[1]}{token[2]}"
-
-
-class _Union:
-    def __init__(self):
-        self.up: dict = {}
-
-    def find(self, a):
-        self.up.setdefault(a, a)
-        while self.up[a] != a:
-            self.up[a] = self.up[self.up[a]]
-            a = self.up[a]
-        return a
-
-    def join(self, a, b):
-        self.up[self.find(a)] = self.find(b)
 
 
 def inspect_svg(path: str | Path, precision: float | None = WRITER_PRECISION) -> SvgReport:
@@ -413,15 +246,6 @@ def _add(report: SvgReport, check: Check) -> None:
                                f"(tolerance {check.tolerance:.2g} {check.unit})")
 
 
-def _line_data(line: ET.Element):
-    """(x1, y1, x2, y2), value, direction (rad) of a tagged line, or None when unreadable."""
-    xy = [_number(line.get(k)) for k in ("x1", "y1", "x2", "y2")]
-    value, theta = _number(line.get("data-value")), _number(line.get("data-direction"))
-    if None in xy or value is None or theta is None or not all(math.isfinite(c) for c in xy + [value, theta]):
-        return None
-    return xy, value, math.radians(theta)
-
-
 def _force_closure(report: SvgReport, gid: str, lines: list[ET.Element], r: float) -> None:
     """A force polygon's sides sum to zero, drawn and as recorded."""
     sides = [d for d in (_line_data(l) for l in lines if l.get("data-role") == "side") if d is not None]
@@ -525,45 +349,3 @@ def check_svg(path: str | Path, precision: float | None = None) -> list[Measurem
     if report.problems:
         raise DrawingError(f"{path}: {report.problems[0]}")
     return report.measurements
-
-
-def check_plan(plan: Plan, tol: float = GEOMETRY_TOL_MM) -> list[str]:
-    """Geometric checks of a constructed plan with shapely; returns the failures (empty = good).
-
-    - every vector lies on the construction line of its direction (⊥ link, ∥ guide);
-    - the two construction lines of each group meet at an image of the plan;
-    - the images of every link with three or more points form a figure similar to it.
-    """
-    failures = []
-    vectors = {v.quantity: v for v in plan.vectors}
-    for line in plan.lines:
-        geom = LineString([line.start, line.end])
-        v = vectors.get(line.quantity)
-        if v is not None:
-            for end in (v.tail, v.head):
-                if geom.distance(Point(end)) > tol:
-                    failures.append(f"{line.quantity}: end {end} is {geom.distance(Point(end)):.3g} mm off its line")
-    by_group: dict[str, list[LineString]] = {}
-    for line in plan.lines:
-        by_group.setdefault(line.group, []).append(LineString([line.start, line.end]))
-    images = [Point(p.xy) for p in plan.points]
-    for group, lines in by_group.items():
-        if len(lines) != 2 or group == "I":
-            continue
-        meet = lines[0].intersection(lines[1])
-        if meet.is_empty or meet.geom_type != "Point":
-            failures.append(f"group {group}: construction lines do not meet in one point")
-        elif min(meet.distance(p) for p in images) > tol:
-            failures.append(f"group {group}: construction lines meet {min(meet.distance(p) for p in images):.3g} mm "
-                            "from every image")
-    return failures
-
-
-def similarity_ratio(figure: list[tuple[float, float]], image: list[tuple[float, float]]) -> float:
-    """Largest relative deviation of the side ratios image/figure from their mean (0 = similar)."""
-    sides = []
-    for poly in (figure, image):
-        sides.append([math.dist(poly[i], poly[j]) for i in range(len(poly)) for j in range(i + 1, len(poly))])
-    ratios = [b / a for a, b in zip(*sides) if a > 0]
-    mean = sum(ratios) / len(ratios)
-    return max(abs(r - mean) for r in ratios) / mean if mean > 0 else 0.0

@@ -8,18 +8,20 @@ variant, a page with the key's values and one page per key sheet (A4 landscape o
 as the sheet is). The sheets are ``<img>`` of the SVG files beside it (relative paths, so the
 folder can be moved); the text holds no date or absolute path: the same handout gives the same
 bytes.
+
+Knows :mod:`.variants` (the handout, its solved variants, the margins' wording) and the
+export's sheet size; must not import the solving, the random draws, the writing or the command
+line.
 """
 
 from __future__ import annotations
 
 import html
 import json
-from typing import TYPE_CHECKING, Sequence
+from typing import Sequence
 
-from .export import sheet_size_mm
-
-if TYPE_CHECKING:
-    from .handout import Drawn, Handout
+from ..export import sheet_size_mm
+from .variants import Drawn, Handout, margin_text
 
 __all__ = ["index_html", "CSS"]
 
@@ -92,7 +94,7 @@ def _values_table(report: dict, angular: bool, drive: str) -> str:
     return "<table>\n" + "\n".join(rows) + "\n</table>"
 
 
-def index_html(h: "Handout", drawn: Sequence["Drawn"], *, margin: float | None = None) -> str:
+def index_html(h: Handout, drawn: Sequence[Drawn], *, margin: float | None = None) -> str:
     """The index page's text (see the module docstring)."""
     pos_key, speed_key, rate_key = h.keys
     drive = str(h.base_data["drive"]["link"])
@@ -105,8 +107,6 @@ def index_html(h: "Handout", drawn: Sequence["Drawn"], *, margin: float | None =
            f"<p>Base scene: <code>{_e(h.base.name)}</code> (copied beside this page); the variants: "
            f'<a href="variants.toml">variants.toml</a>.</p>']
     if h.seed is not None:
-        from .handout import margin_text
-
         out.append(f"<p>Drawn at random with seed {h.seed}: each length within ±20 % of the base's, the angle over "
                    f"the turn, ω from a standard series; every variant assembles and every asked position keeps a "
                    f"margin from singular positions: |condition| ≥ {margin:g} in every group whose condition is a "
@@ -147,6 +147,6 @@ def index_html(h: "Handout", drawn: Sequence["Drawn"], *, margin: float | None =
     return "\n".join(out)
 
 
-def _length(d: "Drawn", name: str, h: "Handout") -> float:
+def _length(d: Drawn, name: str, h: Handout) -> float:
     """The variant's value of the base length ``name`` (m)."""
     return float(d.variant.lengths.get(name, h.base_data["lengths"][name]))

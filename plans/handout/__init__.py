@@ -1,0 +1,46 @@
+"""Handouts for a class: one base scene, many variants, an assignment and an answer key each.
+
+A *variants file* names a base scene and lists per-variant values::
+
+    base = "six_link_press.toml"       # relative to the variants file
+    title = "TMM homework 2"           # optional (default: the base scene's title)
+
+    [[variant]]
+    lengths = { OA = 0.1, AB = 0.36 }  # any of the base's [lengths]; the rest keep the base's values
+    angle = 30.0                        # the drive's value(s), a number or a list (linear drive: displacement)
+    omega = 10.0                        # ω1 (linear drive: velocity)
+    epsilon = 0.0                       # optional ε1 (linear drive: acceleration)
+
+Every key of a variant is optional (a missing one keeps the base's value). Instead of a file,
+:func:`random_variants` draws N variants around a base scene from ``numpy.random.default_rng(seed)``:
+each length × U(1 − 20 %, 1 + 20 %) to three significant digits, a crank's angle over the turn
+in 5° steps, ω1 from the series 1, 1.5, 2, 2.5, 3, 4, 5, 6, 8 × 10ᵏ within ½…2 × the base's;
+a draw that does not assemble, or whose condition figure (``Motion.sines``) is below
+:data:`MARGIN_SIN` at any asked position in any group, is drawn again.
+
+:func:`write_handout` writes, into the output folder, ``variant-NN/`` (the assignment sheet and
+the answer key: every sheet the scene draws, SVG and PDF, the JSON values and the variant's
+own scene file), ``variants.toml`` (the variants, reproducible: ``plans handout`` on it gives the
+same keys), a copy of the base scene and ``index.html``. Only the public API is used:
+:func:`plans.parse_scene`, :func:`plans.render`, :meth:`plans.Sheets.save`.
+
+The package: :mod:`.variants` (the data, reading a variants file), :mod:`.solving` (a variant
+solved, the margins), :mod:`.draws` (random variants), :mod:`.toml_text` (TOML writer),
+:mod:`.index` (``index.html``) and :mod:`.writing` (the output folder). Each imports only
+modules before it in this list (:mod:`.index` only :mod:`.variants`); nothing here imports the
+command line.
+"""
+
+from __future__ import annotations
+
+from .draws import random_variants
+from .solving import group_margins, solve_variant, variant_data, variant_scene, worst_sine
+from .toml_text import to_toml
+from .variants import (ANGLE_STEP_DEG, LENGTH_SPREAD, MARGIN_SIN, MAX_TRIES, MAX_VARIANTS, SINE_GROUPS,
+                       SPEED_RANGE, SPEED_SERIES, Drawn, Handout, Variant, margin_text, read_base, read_variants)
+from .writing import INDEX, VARIANTS, Progress, write_handout
+
+__all__ = ["MARGIN_SIN", "LENGTH_SPREAD", "ANGLE_STEP_DEG", "SPEED_SERIES", "MAX_VARIANTS", "MAX_TRIES",
+           "Variant", "Handout", "Drawn", "read_variants", "read_base", "random_variants", "variant_scene",
+           "solve_variant", "write_handout", "Progress", "to_toml", "SINE_GROUPS", "SPEED_RANGE", "INDEX", "VARIANTS",
+           "margin_text", "variant_data", "worst_sine", "group_margins"]

@@ -1,0 +1,101 @@
+"""Random variants around a base scene (``plans handout --random N --seed S``): lengths,
+crank angle and ω1 drawn from ``numpy.random.default_rng(seed)`` in a fixed order, a draw that
+does not assemble or misses the margin drawn again.
+
+Knows :mod:`.variants` and :mod:`.solving`; must not import the writing, the index page, the
+drawing or the command line.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+from ..errors import PlansError, SceneError
+from ..pipeline import render
+from ..scene import parse_scene
+from .solving import group_margins, short_of, solve_variant
+from .variants import (ANGLE_STEP_DEG, LENGTH_SPREAD, MARGIN_SIN, MAX_TRIES, SPEED_RANGE, SPEED_SERIES, Drawn,
+                       Handout, Variant, read_base)
+
+__all__ = ["random_variants"]
+
+def _round3(x: float) -> float:
+    """``x`` to three significant digits (as its shortest decimal)."""
+    return float(f"{x:.3g}")
+
+
+def _speeds(base: float) -> tuple[float, ...]:
+    """The series values within SPEED_RANGE × |base| (|base| itself when none), with its sign."""
+    if base == 0.0:
+        return (0.0,)
+    lo, hi = abs(base) * SPEED_RANGE[0], abs(base) * SPEED_RANGE[1]
+    k0 = math.floor(math.log10(lo)) - 1
+    found = sorted({float(f"{m:g}e{k}") for k in range(k0, k0 + 4) for m in SPEED_SERIES
+                    if lo * (1 - 1e-12) <= float(f"{m:g}e{k}") <= hi * (1 + 1e-12)})
+    return tuple(math.copysign(s, base) for s in (found or [abs(base)]))
+
+
+def _draw(h: Handout, rng: np.random.Generator, number: int) -> Variant:
+    """One random variant (see :mod:`plans.handout`); the draws are made in a fixed order."""
+    base_lengths = h.base_data.get("lengths", {})
+    lengths = {n: _round3(float(x) * rng.uniform(1 - LENGTH_SPREAD, 1 + LENGTH_SPREAD))
+               for n, x in base_lengths.items()}
+    drive = h.base_data["drive"]
+    pos, speed_key, _ = h.keys
+    steps = int(round(360.0 / ANGLE_STEP_DEG))
+    angle = float(rng.integers(0, steps)) * ANGLE_STEP_DEG
+    rotary = h.angular and not _is_coupler(h)
+    values = (angle,) if rotary else None
+    speeds = _speeds(float(drive.get(speed_key, 0.0)))
+    speed = speeds[int(rng.integers(0, len(speeds)))]
+    return Variant(number=number, lengths=lengths, values=values, speed=speed)
+
+
+def _is_coupler(h: Handout) -> bool:
+    """Whether the angle drive turns a link with no pivot on the frame (its angle cannot go round)."""
+    links = h.base_data["links"]
+    return not set(links[str(h.base_data["drive"]["link"])]) & set(links["0"])
+
+
+def random_variants(path: str | Path, count: int, seed: int, *, margin: float = MARGIN_SIN,
+                    progress: Callable[[int, str], None] | None = None) -> tuple[Handout, list[Drawn]]:
+    """``count`` variants around the base scene at ``path``, drawn from ``default_rng(seed)``,
+    each solved and kept only when it assembles with |condition| ≥ ``margin`` everywhere; a
+    failed draw is drawn again (up to MAX_TRIES times a variant). Returns the handout and the
+    solved variants."""
+    h = read_base(path)
+    margins = group_margins(render(parse_scene(h.base_data, file=str(h.base))), margin)
+    h = Handout(base=h.base, base_text=h.base_text, base_data=h.base_data, variants=tuple(Variant(k + 1)
+                for k in range(count)), title=h.title, seed=seed, margin=margin, margins=margins)
+    rng = np.random.default_rng(seed)
+    drawn: list[Drawn] = []
+    redraws = 0
+    for number in range(1, count + 1):
+        why = ""
+        for _ in range(MAX_TRIES):
+            v = _draw(h, rng, number)
+            try:
+                d = solve_variant(h, v)
+            except PlansError as exc:
+                why = str(exc)
+                redraws += 1
+                continue
+            why = short_of(d.sheets, margins)
+            if not why:
+                drawn.append(d)
+                break
+            why = f"{d.name}: {why}"
+            redraws += 1
+        else:
+            raise SceneError(f"no variant among {MAX_TRIES} draws assembles keeping the margin from singular "
+                             f"positions (the last: {why}); the base's lengths ±{LENGTH_SPREAD:.0%} give too few "
+                             "mechanisms that work: check the base scene", file=str(h.base), key="--random")
+        if progress:
+            progress(number, drawn[-1].name)
+    variants = tuple(d.variant for d in drawn)
+    return Handout(base=h.base, base_text=h.base_text, base_data=h.base_data, variants=variants, title=h.title,
+                   seed=seed, margin=margin, margins=margins, redraws=redraws), drawn

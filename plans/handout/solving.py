@@ -1,0 +1,91 @@
+"""A variant solved: its scene data (the base's with the variant's lengths and drive), its
+scene, its rendered sheets, and the margin from singular positions each group must keep.
+
+Knows :mod:`.variants`, the scene reader, the pipeline and the kinematics' WARN_SIN; must not
+import the random draws, the writing, the index page, the drawing or the command line.
+"""
+
+from __future__ import annotations
+
+import copy
+from typing import Mapping
+
+import numpy as np
+
+from ..errors import PlansError, SceneError
+from ..kinematics import WARN_SIN
+from ..pipeline import Sheets, render
+from ..scene import Scene, parse_scene
+from .variants import MARGIN_SIN, SINE_GROUPS, Drawn, Handout, Variant
+
+__all__ = ["variant_data", "variant_scene", "solve_variant", "worst_sine", "group_margins", "short_of"]
+
+def variant_data(h: Handout, v: Variant) -> dict:
+    """The base scene's TOML data with the variant's lengths and drive values."""
+    data = copy.deepcopy(dict(h.base_data))
+    if v.lengths:
+        data["lengths"] = {**data.get("lengths", {}), **v.lengths}
+    drive = data["drive"]
+    for key, value in zip(h.keys, (list(v.values) if v.values is not None else None, v.speed, v.rate)):
+        if value is not None:
+            drive[key] = value[0] if isinstance(value, list) and len(value) == 1 else value
+    return data
+
+
+def _where(h: Handout, v: Variant) -> tuple[str, str]:
+    """The file and key that name variant ``v`` in error messages."""
+    return (str(h.source), f"variant[{v.number - 1}]") if h.source else (str(h.base), f"--random ({h.name(v)})")
+
+
+def variant_scene(h: Handout, v: Variant) -> Scene:
+    """The scene of variant ``v``; a value the scene refuses is reported at the variant's key."""
+    file, key = _where(h, v)
+    try:
+        return parse_scene(variant_data(h, v), file=str(h.base))
+    except SceneError as exc:
+        sub = exc.key or ""
+        for table, alias in (("drive.", ""), ("lengths.", "lengths.")):
+            if sub.startswith(table):
+                sub = alias + sub[len(table):]
+        raise SceneError(f"{exc.message} ({h.name(v)})", file=file, key=f"{key}.{sub}" if sub else key) from None
+
+
+def solve_variant(h: Handout, v: Variant) -> Drawn:
+    """Variant ``v`` rendered (every sheet the scene draws); a variant that cannot be assembled
+    or is singular is one error naming the variant and why."""
+    scene = variant_scene(h, v)
+    name = h.name(v)
+    file, key = _where(h, v)
+    try:
+        sheets = render(scene, stem=name)
+    except SceneError as exc:      # a link's lengths that cannot form its shape
+        where = f" (link {exc.key[len('links.'):]})" if exc.key and exc.key.startswith("links.") else ""
+        raise SceneError(f"{name} cannot be built: {exc.message}{where}", file=file, key=key) from None
+    except PlansError as exc:      # does not assemble, or singular, at an asked position
+        why = str(exc).removeprefix(f"{h.base}, ").removeprefix(f"{h.base}: ")
+        raise SceneError(f"{name} cannot be drawn: {why}", file=file, key=key) from None
+    return Drawn(v, name, scene, sheets)
+
+
+def worst_sine(sheets: Sheets) -> float:
+    """The smallest |condition figure| over every group and position (1 with no group)."""
+    return min((float(np.min(np.abs(s))) for s in sheets.motion.sines.values()), default=1.0)
+
+
+def group_margins(base: Sheets, margin: float = MARGIN_SIN) -> dict[str, float]:
+    """The margin each group of the base scene must keep: ``margin`` for a group whose figure is
+    a sine (SINE_GROUPS), else half the base's smallest |figure|, within WARN_SIN…margin."""
+    out = {}
+    for g, s in base.motion.sines.items():
+        own = 0.5 * float(np.min(np.abs(s)))
+        out[g] = margin if g.startswith(SINE_GROUPS) else min(margin, max(WARN_SIN, own))
+    return out
+
+
+def short_of(sheets: Sheets, margins: Mapping[str, float]) -> str:
+    """Why ``sheets`` misses the margins ("" when it keeps them all)."""
+    for g, s in sheets.motion.sines.items():
+        worst = float(np.min(np.abs(s)))
+        if worst < margins.get(g, MARGIN_SIN):
+            return f"group {g}: condition {worst:.3g} below the margin {margins.get(g, MARGIN_SIN):g}"
+    return ""

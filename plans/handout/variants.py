@@ -1,0 +1,210 @@
+"""A handout's data: the variants file's :class:`Variant` and :class:`Handout`, a solved
+:class:`Drawn`, the bounds of the random mode, and the reading and validating of a base scene
+and of a variants file (errors name the file, the key and the fix).
+
+Knows the scene reader and the pipeline's :class:`plans.Sheets`; must not import the other
+modules of :mod:`plans.handout`, the drawing or the command line.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Mapping
+
+from ..errors import SceneError
+from ..pipeline import Sheets
+from ..scene import Scene, parse_scene
+
+__all__ = ["MARGIN_SIN", "SINE_GROUPS", "LENGTH_SPREAD", "ANGLE_STEP_DEG", "SPEED_SERIES", "SPEED_RANGE",
+           "MAX_VARIANTS", "MAX_TRIES", "Variant", "Handout", "Drawn", "read_base", "read_variants", "margin_text"]
+
+#: Margin of the random mode: every asked position of every drawn variant has, in every group,
+#: |condition| ≥ this (``Motion.sines``: the normalised determinant of the group's velocity
+#: equations, 0 at a singular position; plans warns below WARN_SIN = 1e-2). 0.1 keeps the
+#: unknown directions at least 5.7° from parallel.
+MARGIN_SIN = 0.1
+#: Groups whose condition figure is a sine (class II closed forms, class III groups); the others
+#: (class IV groups, a drive inside the chain) report σmin/σmax of a Newton Jacobian, which is
+#: small even far from a singular position (0.02–0.05 in the examples): for them the margin is
+#: half the base scene's own smallest figure, between WARN_SIN and MARGIN_SIN.
+SINE_GROUPS = ("II(", "III(")
+#: Random lengths: the base's × U(1 − spread, 1 + spread).
+LENGTH_SPREAD = 0.2
+#: Random crank angles: multiples of this over the turn, degrees.
+ANGLE_STEP_DEG = 5.0
+#: Random ω1 (or a linear drive's speed): these mantissas × 10ᵏ within SPEED_RANGE × the base's.
+SPEED_SERIES = (1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0)
+SPEED_RANGE = (0.5, 2.0)
+#: Most variants of one handout.
+MAX_VARIANTS = 999
+#: Draws tried for one random variant before giving up.
+MAX_TRIES = 200
+
+_DRIVE_KEYS = {True: ("angle", "omega", "epsilon"), False: ("displacement", "velocity", "acceleration")}
+
+
+@dataclass(frozen=True)
+class Variant:
+    """One variant: its number (1, 2, …), the lengths it sets (base [lengths] key → m) and its
+    drive values; ``None`` keeps the base's."""
+
+    number: int
+    lengths: Mapping[str, float] = field(default_factory=dict)
+    values: tuple[float, ...] | None = None
+    speed: float | None = None
+    rate: float | None = None
+
+
+@dataclass(frozen=True)
+class Handout:
+    """The base scene (its path, text and parsed TOML) and the variants; ``seed`` and ``margin``
+    when the variants were drawn at random."""
+
+    base: Path
+    base_text: str
+    base_data: Mapping[str, Any]
+    variants: tuple[Variant, ...]
+    title: str
+    source: Path | None = None
+    seed: int | None = None
+    margin: float | None = None
+    margins: Mapping[str, float] = field(default_factory=dict)
+    redraws: int = 0
+
+    @property
+    def angular(self) -> bool:
+        return "displacement" not in self.base_data["drive"] and "velocity" not in self.base_data["drive"]
+
+    @property
+    def keys(self) -> tuple[str, str, str]:
+        """The drive's keys: angle, omega, epsilon (or displacement, velocity, acceleration)."""
+        return _DRIVE_KEYS[self.angular]
+
+    def name(self, v: Variant) -> str:
+        """``variant-01`` (as many digits as the largest number needs, at least two)."""
+        return f"variant-{v.number:0{max(2, len(str(len(self.variants))))}d}"
+
+
+@dataclass(frozen=True)
+class Drawn:
+    """A variant solved: its scene and its rendered sheets."""
+
+    variant: Variant
+    name: str
+    scene: Scene
+    sheets: Sheets
+
+
+def _load(path: Path, what: str) -> tuple[str, dict]:
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise SceneError(f"no such {what}; check the path", file=str(path)) from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise SceneError(f"cannot read the file ({exc.__class__.__name__}); it must be UTF-8 TOML",
+                         file=str(path)) from None
+    try:
+        return text, tomllib.loads(text)
+    except (tomllib.TOMLDecodeError, ValueError, RecursionError) as exc:
+        raise SceneError(f"malformed TOML: {exc}; fix the syntax there", file=str(path)) from None
+
+
+def read_base(path: str | Path) -> Handout:
+    """A base scene for :func:`random_variants`: read and validated (no variants yet)."""
+    path = Path(path)
+    text, data = _load(path, "scene file")
+    if "base" in data or "variant" in data:
+        raise SceneError("is a variants file, not a scene; --random draws variants around a scene: give its base "
+                         f"scene ({data.get('base', '?')}) instead", file=str(path), key="--random")
+    scene = parse_scene(data, file=str(path))
+    return Handout(base=path, base_text=text, base_data=data, variants=(), title=scene.title)
+
+
+def read_variants(path: str | Path) -> Handout:
+    """Read and validate a variants file; errors name the file, the key and the fix."""
+    path = Path(path)
+    text, data = _load(path, "variants file")
+    f = str(path)
+    if "base" not in data:
+        if "points" in data and "drive" in data:
+            raise SceneError("is a scene, not a variants file: add --random N to draw N variants around it, or "
+                             'write a variants file with base = "<this scene>" and [[variant]] tables', file=f)
+        raise SceneError('missing base: name the base scene, e.g. base = "six_link_press.toml" (a path relative '
+                         "to this file)", file=f, key="base")
+    extra = sorted(str(k) for k in set(data) - {"base", "title", "variant"})
+    if extra:
+        raise SceneError(f"unknown key {extra[0]!r}; a variants file has base, title and [[variant]] tables",
+                         file=f, key=extra[0])
+    if not isinstance(data["base"], str) or not data["base"].strip():
+        raise SceneError(f"base is the path of the base scene (a string), got {data['base']!r}", file=f, key="base")
+    base_path = path.parent / data["base"]
+    if not base_path.is_file():
+        raise SceneError(f"base scene {data['base']!r} not found (looked for {base_path}; the path is relative to "
+                         "the variants file); fix the path", file=f, key="base")
+    base = read_base(base_path)
+    title = data.get("title", base.title)
+    if not isinstance(title, str) or not title.isprintable():
+        raise SceneError("title is one line of text (a string)", file=f, key="title")
+    items = data.get("variant")
+    if not isinstance(items, list) or not items:
+        raise SceneError("no variants: add [[variant]] tables, e.g. [[variant]] with lengths = { OA = 0.1 }, "
+                         "angle = 30.0, omega = 10.0", file=f, key="variant")
+    if len(items) > MAX_VARIANTS:
+        raise SceneError(f"{len(items)} variants; at most {MAX_VARIANTS}", file=f, key="variant")
+    variants = tuple(_variant(item, k, base, f) for k, item in enumerate(items))
+    return Handout(base=base_path, base_text=base.base_text, base_data=base.base_data, variants=variants,
+                   title=title, source=path)
+
+
+def _number(value: Any, key: str, file: str, *, positive: bool = False, unit: str = "") -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise SceneError(f"must be a number{' of ' + unit if unit else ''}, got {value!r}", file=file, key=key)
+    x = float(value)
+    if not math.isfinite(x):
+        raise SceneError(f"{value!r} is not a finite number; give a real value", file=file, key=key)
+    if positive and x <= 0.0:
+        raise SceneError(f"must be positive, got {x:g}; give the length in metres, e.g. 0.1", file=file, key=key)
+    return x
+
+
+def _variant(item: Any, k: int, base: Handout, file: str) -> Variant:
+    key = f"variant[{k}]"
+    if not isinstance(item, Mapping):
+        raise SceneError("each [[variant]] entry is a table", file=file, key=key)
+    pos, speed, rate = base.keys
+    allowed = ("lengths", pos, speed, rate)
+    for name in item:
+        if name not in allowed:
+            other = _DRIVE_KEYS[not base.angular]
+            hint = (f"; the base scene's drive is {'an angle' if base.angular else 'a linear'} drive: use "
+                    f"{pos}, {speed}, {rate}") if name in other else ""
+            raise SceneError(f"unknown key {name!r}; a variant has {', '.join(allowed)}{hint}", file=file,
+                             key=f"{key}.{name}")
+    base_lengths = base.base_data.get("lengths", {})
+    lengths = item.get("lengths", {})
+    if not isinstance(lengths, Mapping):
+        raise SceneError("lengths is a table of the base's [lengths], e.g. lengths = { OA = 0.1 }", file=file,
+                         key=f"{key}.lengths")
+    for name in lengths:
+        if name not in base_lengths:
+            known = ", ".join(base_lengths) if base_lengths else "none: add the length to the base scene's [lengths]"
+            raise SceneError(f"unknown length {name!r}; the base scene's [lengths] has {known}", file=file,
+                             key=f"{key}.lengths.{name}")
+    lengths = {n: _number(v, f"{key}.lengths.{n}", file, positive=True, unit="metres") for n, v in lengths.items()}
+    values = None
+    if pos in item:
+        raw = item[pos] if isinstance(item[pos], list) else [item[pos]]
+        if not raw:
+            raise SceneError(f"{pos} is a number or a non-empty list", file=file, key=f"{key}.{pos}")
+        values = tuple(_number(v, f"{key}.{pos}", file) for v in raw)
+    return Variant(number=k + 1, lengths=lengths, values=values,
+                   speed=_number(item[speed], f"{key}.{speed}", file) if speed in item else None,
+                   rate=_number(item[rate], f"{key}.{rate}", file) if rate in item else None)
+
+
+def margin_text(h: Handout) -> str:
+    """``II(2-3) 0.1, II(4-5) 0.1``: each group's margin, as the index page and variants.toml say it."""
+    return ", ".join(f"{g} {m:g}" for g, m in h.margins.items()) or "no group to keep"

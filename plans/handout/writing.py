@@ -1,0 +1,129 @@
+"""Writing a handout into its output folder: every variant's folder (assignment sheet, answer
+key, its scene file), ``variants.toml``, the base scene's copy and ``index.html``; and the
+progress bar the command line shows meanwhile.
+
+Knows :mod:`.variants`, :mod:`.solving`, :mod:`.toml_text`, :mod:`.index`, the export and the
+output (the assignment's drawing and scheme are imported where they are drawn); must not import
+the random draws or the command line.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+from typing import Callable, Sequence, TextIO
+
+from ..export import convert
+from ..output import check_folder, write_files
+from .index import index_html
+from .solving import variant_data
+from .toml_text import to_toml, toml_value
+from .variants import LENGTH_SPREAD, Drawn, Handout, margin_text
+
+__all__ = ["INDEX", "VARIANTS", "Progress", "write_handout"]
+
+#: Files in the output folder besides the variants' folders.
+INDEX, VARIANTS = "index.html", "variants.toml"
+
+
+def _variants_file(h: Handout, base_name: str) -> str:
+    """``variants.toml``: the handout's variants in the variants format, every value written
+    (``plans handout`` on it, beside the base scene's copy, gives the same answer keys)."""
+    lines = [f"# plans handout: {len(h.variants)} variants of {h.base.name}"]
+    if h.seed is not None:
+        lines.append(f"# drawn with --random {len(h.variants)} --seed {h.seed}: lengths ±{LENGTH_SPREAD:.0%}; every "
+                     f"asked position keeps |condition| ≥ the margin of each group: {margin_text(h)}")
+    lines += ["", f"base = {toml_value(base_name)}", f"title = {toml_value(h.title)}"]
+    for v in h.variants:
+        data = variant_data(h, v)
+        lines += ["", "[[variant]]"]
+        if data.get("lengths"):
+            lines.append(f"lengths = {toml_value(data['lengths'])}")
+        lines += [f"{key} = {toml_value(data['drive'][key])}" for key in h.keys if key in data["drive"]]
+    return "\n".join(lines) + "\n"
+
+
+def _base_name(h: Handout) -> str:
+    """The base scene's copy in the output folder: its own name unless that is taken."""
+    return h.base.name if h.base.name not in (INDEX, VARIANTS) else "base.toml"
+
+
+class Progress:
+    """A progress bar on ``stream`` (stderr) while a handout is made, drawn only on a terminal:
+    ``[#####-----] 12/30 variant-12``, rewritten in place, one line."""
+
+    def __init__(self, total: int, what: str, stream: TextIO | None = None, width: int = 30):
+        self.stream = sys.stderr if stream is None else stream
+        self.on = bool(getattr(self.stream, "isatty", lambda: False)())
+        self.total, self.what, self.width = max(total, 1), what, width
+
+    def __call__(self, done: int, note: str = "") -> None:
+        if not self.on:
+            return
+        filled = int(self.width * done / self.total)
+        self.stream.write(f"\r{self.what} [{'#' * filled}{'-' * (self.width - filled)}] {done}/{self.total} "
+                          f"{note:<16}")
+        self.stream.flush()
+
+    def close(self) -> None:
+        if self.on:
+            self.stream.write("\n")
+            self.stream.flush()
+
+
+def write_handout(h: Handout, drawn: Sequence[Drawn], out: str | Path, *,
+                  progress: Callable[[int, str], None] | None = None) -> list[Path]:
+    """Write every variant's folder, ``variants.toml``, the base scene's copy and ``index.html``
+    into ``out``. Each folder is written all or nothing (:meth:`plans.Sheets.save`); an error
+    removes what this call wrote before it. Returns the paths written."""
+    from ..drawing.assignment import draw_assignment   # the drawing is needed only here
+
+    out = Path(out)
+    check_folder(out)
+    base_name = _base_name(h)
+    written: list[Path] = []
+    try:
+        for k, d in enumerate(drawn, 1):
+            folder = out / d.name
+            svg = _assignment(h, d, draw_assignment)
+            extra = {f"{d.name}-assignment.svg": svg}
+            written += d.sheets.save(folder, formats="svg,pdf")
+            written += write_files({**convert(extra, ("svg", "pdf")),
+                                    f"{d.name}.toml": _scene_file(h, d)}, folder)
+            if progress:
+                progress(k, d.name)
+        top = {VARIANTS: _variants_file(h, base_name), base_name: h.base_text,
+               INDEX: index_html(h, drawn, margin=h.margin)}
+        written += write_files(top, out)
+    except BaseException:
+        for p in reversed(written):
+            try:
+                p.unlink()
+            except OSError:
+                pass
+        for d in drawn:
+            try:
+                (out / d.name).rmdir()
+            except OSError:
+                pass
+        raise
+    return written
+
+
+def _assignment(h: Handout, d: Drawn, draw: Callable[..., str]) -> str:
+    """The assignment sheet's SVG: the scheme at the variant's first position (constructed from
+    the solved motion), its data, the points and links to find."""
+    from ..constructions.scheme import scheme
+
+    motion = d.sheets.motion
+    mech = motion.mechanism
+    return draw(lambda mu: scheme(motion, 0, mu), d.scene, variant=d.name.replace("variant-", "variant "),
+                points=[p for p in mech.sketch if motion.carrier(p) != "0"],
+                links=[n for n in mech.moving if n != d.scene.drive.link],
+                lengths=variant_data(h, d.variant).get("lengths"))
+
+
+def _scene_file(h: Handout, d: Drawn) -> str:
+    """The variant's own scene file (``plans render`` redraws its key from it)."""
+    return (f"# {d.name} of {h.base.name} ({h.title}): the base scene with this variant's lengths and drive;\n"
+            f"# plans render {d.name}.toml redraws its answer key\n" + to_toml(variant_data(h, d.variant)))
