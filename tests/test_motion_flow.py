@@ -166,7 +166,7 @@ def test_constructions_and_pipeline_compute_no_kinematics(path):
     assert kinematics_uses(path.read_text(encoding="utf-8"), module, may) == []
 
 
-@pytest.mark.parametrize("path", _sources("drawing") + [PACKAGE / "checking.py"],
+@pytest.mark.parametrize("path", _sources("drawing") + sorted(PACKAGE.glob("checking*.py")) + _sources("layout"),
                          ids=lambda p: p.relative_to(PACKAGE).as_posix())
 def test_drawing_and_checking_import_nothing_of_kinematics(path):
     tree = ast.parse(path.read_text(encoding="utf-8"))
