@@ -103,7 +103,7 @@ def _rate(value: Any, key: str, bound: float, unit: str) -> float:
 
 def _walk(kind: DriveKind, values: tuple[float, ...], points: Mapping[str, tuple[float, float]], key: str) -> None:
     """Refuse drive values whose continuation walk from the sketch would take more than
-    MAX_WALK_STEPS steps (kinematics/solve.py ``_grid``: a crank's walk starts within half a turn
+    MAX_WALK_STEPS steps (kinematics/walk.py ``walk_to``: a crank's walk starts within half a turn
     of the values' median and steps 1°; a slider's starts at 0 and steps size/200)."""
     lo, hi = min(values), max(values)
     if kind.angular:

@@ -48,11 +48,11 @@ MIN_SIZE_M = 1e-6
 #: near 1e20 neighbouring doubles are 16000° apart and the angle drawn would not be the one asked.
 MAX_ANGLE_DEG = 1e6
 #: Most continuation steps the solver may walk: it walks from the sketch to every requested value
-#: in 1° steps (a linear drive: size/200, see kinematics/solve.py ``_grid``), keeping every step's
+#: in 1° steps (a linear drive: size/200, see kinematics/walk.py ``walk_to``), keeping every step's
 #: pose. A class III group costs ~4 ms a step, so 7200 steps (20 turns: every position a crank
 #: can take, many times over) take about 30 s; a class II mechanism, well under a second.
 MAX_WALK_STEPS = 7200
-#: The continuation walk's steps (kinematics/solve.py ``_grid``), here so that the bound above
+#: The continuation walk's steps (kinematics/walk.py ``walk_to``), here so that the bound above
 #: and the solver read the same numbers: a crank steps STEP_DEG, a slider size/LINEAR_STEPS_PER_SIZE.
 STEP_DEG = 1.0
 LINEAR_STEPS_PER_SIZE = 200.0

@@ -70,7 +70,7 @@ class Complex:
         """The rods' axes for a class III group, else the scaled Jacobian's σ_min/σ_max (±)."""
         if self.axes:
             return special.condition(self.group, self.mech, states)
-        eq = GroupEquations(self.mech, self.group.links, self.group.pairs)
+        eq = self.eq
         known = {name: s for name, s in states.items() if name not in eq.col}
         return CompiledGroup(self.mech, eq.links, eq.pairs, known).condition(
             eq.pose(states), np.arange(len(states[self.group.links[0]].theta)))
