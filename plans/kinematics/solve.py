@@ -23,7 +23,6 @@ from ..errors import AssemblyError, SingularPositionError
 from ..model import Mechanism
 from ..structure import Structure
 from .kinds import GroupSolver, chain
-from .kinds.dyad import branch_at_sketch
 from .motion import Motion
 from .state import LinkState
 from .tolerances import ASSEMBLY_RTOL, SINGULAR_SIN
@@ -153,7 +152,7 @@ def _direct(mech: Mechanism, structure: Structure, values: np.ndarray, pre: dict
         # every branch over all positions at once (one call: cheaper than solving the start
         # alone first), the one the walk takes at its start kept
         options = s.branches(states, tol)
-        option = options[int(branch_at_sketch(mech, g.links, options, [first])[0])]
+        option = options[s.sketch_branch(options, [first])]
         if not option.valid.all():
             return None
         states[g.m], states[g.n] = option.m, option.n
@@ -237,7 +236,7 @@ def _direct_plan(mech: Mechanism, solvers: list[GroupSolver], values: np.ndarray
         # every branch (one call: cheaper than solving the start alone first), the one the
         # walk takes at its start kept
         options = s.branches(states, tol)
-        b = int(branch_at_sketch(mech, g.links, options, [first])[0])
+        b = s.sketch_branch(options, [first])
         option = options[b]
         if not option.valid.all():
             return None

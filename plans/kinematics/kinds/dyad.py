@@ -40,6 +40,10 @@ class Dyad:
         """Every assembly branch at every position of ``states`` (only ``branch``, when given)."""
         return candidates(self.group, self.mech, states, tol, branch)
 
+    def sketch_branch(self, options: list[Candidate], sweeps: list[np.ndarray]) -> int:
+        """The index of the branch among ``options`` that the walk keeps: the one nearest the sketch."""
+        return int(branch_at_sketch(self.mech, self.group.links, options, sweeps)[0])
+
     def positions(self, states: dict[str, LinkState], walk: Walk) -> None:
         g, mech = self.group, self.mech
         options = self.branches(states, ASSEMBLY_RTOL * mech.size)
