@@ -19,8 +19,19 @@ from .pipeline import Rendered, render_scene
 __all__ = ["main"]
 
 
+def _train_table(r: Rendered) -> list[str]:
+    """The speeds of the scene's gear train, one line."""
+    if r.train is None:
+        return []
+    s = r.train.speeds
+    speeds = "; ".join(f"{name}: n = {float(n):.6g} rpm" for name, n in s.rpm.items())
+    return [f"  gears: W = {s.structure.mobility}; {speeds}"]
+
+
 def _table(r: Rendered) -> str:
     m = r.motion
+    if m is None:
+        return "\n".join([f"{r.stem}: gear train"] + _train_table(r))
     mech = m.mechanism
     unit = "deg" if mech.drive.kind.angular else "m"
     lines = [f"{r.stem}: {m.structure.formula}   μl = {r.scales.mu_l:g} m/mm"
@@ -43,7 +54,7 @@ def _table(r: Rendered) -> str:
                 e = f", ε = {float(s.epsilon[i]):.4g}" if m.order >= 2 else ""
                 links.append(f"{name}: ω = {float(s.omega[i]):.4g}{e}")
             lines.append("    " + "; ".join(links))
-    return "\n".join(lines)
+    return "\n".join(lines + _train_table(r))
 
 
 def _render(paths: Sequence[str], out: str, quiet: bool, formats: Sequence[str] = ("svg",),

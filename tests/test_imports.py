@@ -23,7 +23,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("plans.scene",),
     ("plans.model",),
     ("plans.structure",),
-    ("plans.kinematics",),
+    ("plans.kinematics", "plans.gears"),
     ("plans.kinetostatics",),
     ("plans.constructions",),
     ("plans.drawing",),

@@ -18,6 +18,8 @@ from pathlib import Path
 
 from ..drawing import Style
 from ..errors import PlansError
+from ..gears import GearAnalysis, analyse_train, with_train
+from ..gears.report import gears_report
 from ..scene import Scene, read_scene
 from .json_report import report, report_text
 from .motion_checks import check_triads, motion_warnings
@@ -28,6 +30,7 @@ from .scales import scene_scales
 from .sheets.centres import centres_sheets
 from .sheets.cycle import cycle_sheets
 from .sheets.forces import LEVER_RTOL, force_sheets
+from .sheets.gears import gear_sheets
 from .sheets.koshel import koshel_sheets
 from .sheets.page import Page
 from .sheets.plans import plan_sheets
@@ -52,6 +55,15 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
     """Every file of a scene already read, named ``<stem>…``; ``where`` (the scene's file, or
     None) locates error messages. Nothing here reads or writes a file."""
     path = where or f"scene {scene.title!r}"     # the prefix of the messages below
+    train: GearAnalysis | None = None
+    if scene.gears is not None:
+        try:
+            train = analyse_train(scene.gears)
+        except PlansError as exc:
+            raise exc.in_file(where) if where and hasattr(exc, "in_file") else exc
+        if scene.train_only:
+            return _render_train(scene, train, stem=stem, style=style)
+        scene = with_train(scene, train)
     try:
         motion, cycle = solve_motion(scene)
         rest = at_rest(motion)
@@ -79,8 +91,20 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
     if cycle is not None:
         sheets, data["cycle"] = cycle_sheets(scene, cycle, scales, stem, style)
         files.update(sheets)
+    if train is not None:
+        files.update(gear_sheets(scene, train, stem, style))
+        data["gears"] = gears_report(train)
+        warnings.extend(f"{path}: {w}" for w in train.warnings)
     files[f"{stem}.json"] = report_text(data)
-    return Rendered(stem, files, motion, scales, tuple(warnings), forces)
+    return Rendered(stem, files, motion, scales, tuple(warnings), forces, train)
+
+
+def _render_train(scene: Scene, train: GearAnalysis, *, stem: str, style: Style) -> Rendered:
+    """The files of a gear train alone: its sheet (when drawn) and the report."""
+    files = gear_sheets(scene, train, stem, style)
+    files[f"{stem}.json"] = report_text({"title": scene.title, "gears": gears_report(train)})
+    where = scene.file or f"scene {scene.title!r}"
+    return Rendered(stem, files, None, None, tuple(f"{where}: {w}" for w in train.warnings), None, train)
 
 
 def render(scene: Scene | str | os.PathLike, *, style: Style = Style(), stem: str | None = None) -> Sheets:
@@ -102,4 +126,5 @@ def render(scene: Scene | str | os.PathLike, *, style: Style = Style(), stem: st
         rendered = _render(scene, stem=name, where=scene.file, style=style)
     else:
         raise TypeError(f"plans.render takes a Scene or the path of a scene file, not {type(scene).__name__}")
-    return Sheets(rendered.stem, rendered.files, rendered.motion, rendered.scales, rendered.warnings, rendered.forces)
+    return Sheets(rendered.stem, rendered.files, rendered.motion, rendered.scales, rendered.warnings, rendered.forces,
+                  rendered.train)

@@ -16,6 +16,7 @@ from typing import Iterator, Sequence
 
 from ..constructions import Scales
 from ..export import DEFAULT_DPI, convert, parse_formats, require_cairo
+from ..gears import GearAnalysis
 from ..kinematics import Motion
 from ..kinetostatics import Forces
 from ..output import check_folder, write_files
@@ -25,7 +26,8 @@ __all__ = ["Rendered", "Sheet", "Sheets", "save_files"]
 
 @dataclass(frozen=True)
 class Rendered:
-    """The files of one scene (name → text), its motion, scales and warnings."""
+    """The files of one scene (name → text), its motion, scales and warnings (motion and scales
+    are None for a gear train alone)."""
 
     stem: str
     files: dict[str, str]
@@ -33,6 +35,7 @@ class Rendered:
     scales: Scales
     warnings: tuple[str, ...]
     forces: Forces | None = None    # the force analysis, when the scene asks for it
+    train: GearAnalysis | None = None   # the gear train, when the scene has [gears]
 
 
 @dataclass(frozen=True)
@@ -77,6 +80,11 @@ class Sheets(Rendered):
         return self.files[f"{self.stem}.json"]
 
     @property
+    def title(self) -> str:
+        """The scene's title (as its report gives it)."""
+        return self.report["title"]
+
+    @property
     def report(self) -> dict:
         """The JSON report, parsed: ``report["positions"][i]["points"]["B"]["v"]``."""
         return json.loads(self.json)
@@ -97,7 +105,7 @@ class Sheets(Rendered):
     def _repr_html_(self) -> str:
         """Every sheet, one below the other, each an ``<img>`` of its SVG (kept apart so that
         the ids of one sheet never meet another's), with its name above it."""
-        parts = [f"<div><p><b>{html.escape(self.motion.mechanism.title)}</b> — {len(self)} sheets "
+        parts = [f"<div><p><b>{html.escape(self.title)}</b> — {len(self)} sheets "
                  f"({html.escape(self.stem)})</p>"]
         for w in self.warnings:
             parts.append(f"<p>warning: {html.escape(w)}</p>")

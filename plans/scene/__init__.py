@@ -7,7 +7,7 @@ raises :class:`~plans.errors.SceneError` naming the key and the fix; nothing is 
 
 One reader per section: :mod:`.sketch` (points, links, sliders, lengths), :mod:`.drive`,
 :mod:`.options` ([plans] and the cycle), :mod:`.scales`, :mod:`.loads` (masses, forces,
-moments, gravity, balance), put together by :mod:`.document` (a mapping) and :mod:`.file`
+moments, gravity, balance), :mod:`.gears` (a gear train), put together by :mod:`.document` (a mapping) and :mod:`.file`
 (a TOML file); :mod:`.checks` holds the checks they share and :mod:`.values` the value types
 and bounds. The package imports only plans.errors (and the standard library).
 """
@@ -17,10 +17,11 @@ from .values import (CYCLE_SHEETS, CYCLE_STARTS, DEFAULT_DRAW, DRAWABLE, FORCE_S
                      MAX_SPEED, MAX_TITLE_CHARS, MAX_VELOCITY_PLANS, MAX_WALK_STEPS, MIN_CYCLE_POSITIONS, MIN_RATE,
                      MIN_SIZE_M, STEP_DEG, AppliedForce, AppliedMoment, Balance, Cycle, Drive, DriveKind, Mass,
                      Scene, Slider)
+from .gears import GearTrain, Wheel
 from .document import parse_scene
 from .file import read_scene
 
-__all__ = ["Scene", "Slider", "Drive", "DriveKind", "Cycle", "Mass", "AppliedForce", "AppliedMoment", "Balance",
+__all__ = ["Scene", "GearTrain", "Wheel", "Slider", "Drive", "DriveKind", "Cycle", "Mass", "AppliedForce", "AppliedMoment", "Balance",
            "read_scene", "parse_scene", "FRAME", "DRAWABLE", "DEFAULT_DRAW", "FORCE_SHEETS", "CYCLE_SHEETS",
            "CYCLE_STARTS", "MIN_CYCLE_POSITIONS", "MAX_VELOCITY_PLANS", "STEP_DEG", "LINEAR_STEPS_PER_SIZE",
            "MAX_COORD_M", "MIN_SIZE_M", "MAX_ANGLE_DEG", "MAX_WALK_STEPS", "MAX_POSITIONS", "MAX_OMEGA",

@@ -12,14 +12,18 @@ from typing import Any, Mapping
 from ..errors import SceneError
 from .checks import SHOW, subtable, text
 from .drive import read_drive
+from .gears import read_gears
 from .loads import read_balance, read_forces, read_gravity, read_masses, read_moments
 from .options import read_cycle, read_draw
 from .scales import read_scales
 from .sketch import read_lengths, read_links, read_points, read_sliders
+from .gears import GearTrain
 from .values import MAX_TITLE_CHARS, Scene
 
 _TOP_KEYS = {"title", "description", "points", "links", "sliders", "drive", "lengths", "plans", "scales",
-             "masses", "forces", "moments", "gravity", "balance"}
+             "masses", "forces", "moments", "gravity", "balance", "gears"}
+#: The keys of a scene that is a gear train alone (no [points], [links], [drive]).
+_TRAIN_KEYS = {"title", "description", "plans", "scales", "gears"}
 
 
 def parse_scene(data: Mapping[str, Any], *, file: str | None = None) -> Scene:
@@ -45,16 +49,32 @@ def _parse(data: Mapping[str, Any], file: str | None) -> Scene:
         raise SceneError(f"title has {len(title)} characters; it is one line at the top of every sheet, keep it "
                          f"within {MAX_TITLE_CHARS} (put the rest in description)", key="title")
     description = text(data.get("description", ""), "description", line=False)
+    gears = read_gears(data["gears"]) if "gears" in data else None
+    if gears is not None and not {"points", "links", "drive"} & set(data):
+        return _train_only(data, title, description, gears, file)
+    if gears is not None and gears.output is None:
+        raise SceneError("a scene with a gear train and a linkage names the wheel or carrier on the crank's shaft: "
+                         "[gears] output = \"NAME\" (or put the train in a scene of its own)", key="gears.output")
     points = read_points(subtable(data, "points", required=True))
     links = read_links(subtable(data, "links", required=True), points)
     sliders = read_sliders(data.get("sliders", []), points, links)
     drive_table = subtable(data, "drive", required=True)
     cycle_keys = {k: drive_table[k] for k in ("positions", "start") if k in drive_table}
-    drive = read_drive({k: v for k, v in drive_table.items() if k not in cycle_keys}, links, sliders, points,
-                       cycle=cycle_keys)
+    drive_keys = {k: v for k, v in drive_table.items() if k not in cycle_keys}
+    if gears is not None:
+        if "omega" in drive_keys:
+            raise SceneError(f"the crank's ω comes from the gear train ([gears] output = {gears.output!r}); remove "
+                             "omega from [drive]", key="drive.omega")
+        drive_keys["omega"] = 1.0      # a placeholder: plans.gears.with_train sets the train's ω
+    drive = read_drive(drive_keys, links, sliders, points, cycle=cycle_keys)
     lengths = read_lengths(subtable(data, "lengths"), points, links)
     plans_table = subtable(data, "plans")
     draw, senses = read_draw({k: v for k, v in plans_table.items() if k not in ("output", "trace", "at")})
+    if gears is not None and "draw" not in plans_table:
+        draw = (*draw, "gears")
+    if gears is None and "gears" in draw:
+        raise SceneError('"gears" draws a gear train, and the scene has no [gears]; remove it from draw',
+                         key="plans.draw")
     cycle = read_cycle(cycle_keys, drive, plans_table, draw, points, links)
     scales = read_scales(subtable(data, "scales"))
     masses = read_masses(subtable(data, "masses"), links)
@@ -64,4 +84,27 @@ def _parse(data: Mapping[str, Any], file: str | None) -> Scene:
     balance = read_balance(data["balance"] if "balance" in data else None, drive, links, points)
     return Scene(title=title or "Mechanism", points=points, links=links, sliders=sliders, drive=drive,
                  lengths=lengths, draw=draw, senses=senses, scales=scales, description=description, file=file,
-                 cycle=cycle, masses=masses, forces=forces, moments=moments, gravity=gravity, balance=balance)
+                 cycle=cycle, masses=masses, forces=forces, moments=moments, gravity=gravity, balance=balance,
+                 gears=gears)
+
+
+def _train_only(data: Mapping[str, Any], title: str, description: str, gears: GearTrain,
+                file: str | None) -> Scene:
+    """A scene that is a gear train alone: [gears] with title, description, [plans] draw, [scales]."""
+    extra = sorted(str(k) for k in set(data) - _TRAIN_KEYS)
+    if extra:
+        raise SceneError(f"[{extra[0]}] belongs to a linkage, but this scene has no [points], [links], [drive]; "
+                         f"a gear train alone has {', '.join(sorted(_TRAIN_KEYS))}", key=extra[0])
+    if gears.output is not None:
+        raise SceneError("output names the wheel on a linkage's crank, but the scene has no linkage; remove it or "
+                         "add the linkage ([points], [links], [drive])", key="gears.output")
+    plans_table = subtable(data, "plans")
+    extra = sorted(str(k) for k in set(plans_table) - {"draw"})
+    if extra:
+        raise SceneError(f"a gear train's [plans] has only draw, not {extra[0]!r}", key=f"plans.{extra[0]}")
+    draw = plans_table.get("draw", ["gears"])
+    if draw not in (["gears"], []):
+        raise SceneError(f"a gear train draws [\"gears\"] (its sheet) or [] (the report alone), got "
+                         f"{SHOW.repr(draw)}", key="plans.draw")
+    return Scene(title=title or "Gear train", points={}, links={}, sliders=(), drive=None, draw=tuple(draw),
+                 scales=read_scales(subtable(data, "scales")), description=description, file=file, gears=gears)

@@ -13,10 +13,13 @@ from dataclasses import dataclass, field
 from enum import StrEnum
 from typing import Mapping
 
+from .gears import GearTrain
+
 #: The frame's name in [links] (a link name, a string).
 FRAME = "0"
 #: The sheets a scene may draw (``[plans] draw``), in the order they are drawn.
-DRAWABLE = ("scheme", "velocity", "acceleration", "centres", "positions", "diagrams", "velocities", "forces", "lever")
+DRAWABLE = ("scheme", "velocity", "acceleration", "centres", "positions", "diagrams", "velocities", "forces", "lever",
+            "gears")
 #: What needs the force analysis (kinetostatics): the force plans and Zhukovsky's lever.
 FORCE_SHEETS = ("forces", "lever")
 #: Sheets of the whole cycle: they need ``[drive] positions = N``.
@@ -218,7 +221,7 @@ class Scene:
     points: Mapping[str, tuple[float, float]]
     links: Mapping[str, tuple[str, ...]]
     sliders: tuple[Slider, ...]
-    drive: Drive
+    drive: Drive | None           # None only in a gear train alone (:attr:`train_only`)
     lengths: Mapping[frozenset[str], float] = field(default_factory=dict)
     draw: tuple[str, ...] = DEFAULT_DRAW
     scales: Mapping[str, float] = field(default_factory=dict)
@@ -231,6 +234,12 @@ class Scene:
     moments: tuple[AppliedMoment, ...] = ()
     gravity: float | None = None  # g (m/s², acting −y) when given, else no gravity
     balance: Balance | None = None  # the balancing element when forces are computed
+    gears: GearTrain | None = None  # [gears]: a train alone (no points, links, drive=None) or driving the crank
+
+    @property
+    def train_only(self) -> bool:
+        """Whether the scene is a gear train with no linkage."""
+        return self.drive is None
 
     @property
     def wants_forces(self) -> bool:

@@ -1,0 +1,65 @@
+"""The ``gears`` section of the JSON report: mobility, links, speeds (rpm exact and float, ω),
+ratios as exact fractions, each carrier's Willis equation with its residual, the tabular
+method, and the geometry.
+
+Imports only plans.gears (and the standard library)."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from typing import Any
+
+from . import GearAnalysis
+from .speeds import tabular
+
+
+def _frac(x: Fraction) -> str:
+    return str(x)
+
+
+def _willis_text(carrier: str, a: str, b: str, ratio: Fraction) -> str:
+    sign = "−" if ratio < 0 else ""
+    return f"(n_{a} − n_{carrier})/(n_{b} − n_{carrier}) = {sign}{abs(ratio)}"
+
+
+def gears_report(analysis: GearAnalysis) -> dict[str, Any]:
+    """The report of a solved train (plain JSON values; no NaN or infinity)."""
+    speeds, s = analysis.speeds, analysis.speeds.structure
+    train = s.train
+    inputs = [name for name, _ in train.inputs]
+    ratios: dict[str, dict[str, Any]] = {}
+    for j in inputs:
+        ratios[j] = {}
+        for k in train.names:
+            if k == j:
+                continue
+            r = speeds.ratio(j, k)
+            ratios[j][k] = None if r is None else {"exact": _frac(r), "value": float(r)}
+    out: dict[str, Any] = {
+        "mobility": s.mobility,
+        "count": {"n": s.n, "p5": s.p5, "p4": s.p4,
+                  "formula": f"W = 3·{s.n} − 2·{s.p5} − {s.p4} = {s.mobility}"},
+        "passive": {"planets": train.planets, "extra_planet_links": s.passive_planets,
+                    "redundant_constraints": s.redundant},
+        "links": [{"name": link.name, "members": list(link.members),
+                   "axis": "frame" if link.axis_on is None else link.axis_on, "fixed": link.fixed}
+                  for link in s.links],
+        "meshes": [{"wheels": [m.a, m.b], "external": m.external,
+                    "seen_from": "frame" if m.reference is None else m.reference,
+                    "ratio": {"exact": _frac(m.ratio), "value": float(m.ratio)}} for m in s.meshes],
+        "inputs": {name: float(rpm) for name, rpm in train.inputs},
+        "speeds": {name: {"rpm": float(n), "rpm_exact": _frac(n), "omega": speeds.omega(name)}
+                   for name, n in speeds.rpm.items()},
+        "ratios": ratios,
+        "willis": [{"carrier": w.carrier, "central": [w.a, w.b], "ratio": {"exact": _frac(w.ratio),
+                                                                           "value": float(w.ratio)},
+                    "equation": _willis_text(w.carrier, w.a, w.b, w.ratio), "residual_rpm": w.residual}
+                   for w in speeds.willis],
+        "tabular": {c: [{"link": name, "carrier_held": _frac(rel), "with_carrier": _frac(nh), "total": _frac(n)}
+                        for name, rel, nh, n in tabular(speeds, c)] for c in train.carriers},
+    }
+    g = analysis.geometry
+    out["geometry"] = None if g is None else {
+        "pitch_radius_mm": g.radius, "arm_mm": g.arm, "unchecked": list(g.unchecked)}
+    out["warnings"] = list(analysis.warnings)
+    return out
