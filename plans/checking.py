@@ -75,6 +75,7 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 from .checking_geometry import GEOMETRY_TOL_MM, check_plan, similarity_ratio
+from .checking_gears import gear_problems
 from .checking_read import (_SVG, _TRANSFORM, _Union, _decimals, _ends, _line_data, _number, _paper_problems,
                             _point_name, _transformed)
 from .checking_report import Check, Closure, Measurement, SvgReport
@@ -183,6 +184,7 @@ def inspect_svg(path: str | Path, precision: float | None = WRITER_PRECISION) ->
             problems.append(f"plan {g.get('id')}: {found} tagged vectors where the writer drew {declared!r}")
     for g, lines in by_group.items():
         _check_group(report, g, lines)
+    problems += gear_problems(root, precision)
     return report
 
 

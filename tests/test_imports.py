@@ -27,7 +27,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("plans.kinetostatics",),
     ("plans.constructions",),
     ("plans.drawing",),
-    ("plans.checking", "plans.checking_read", "plans.checking_report", "plans.checking_geometry", "plans.layout",
+    ("plans.checking", "plans.checking_read", "plans.checking_gears", "plans.checking_report", "plans.checking_geometry", "plans.layout",
      "plans.export", "plans.output"),
     ("plans.pipeline",),
     ("plans.handout", "plans.bench"),

@@ -5,7 +5,10 @@ Reads a solved train; imports nothing of the pipeline."""
 
 from __future__ import annotations
 
+from ...constructions.gears import gear_sheet
 from ...drawing import Style
+from ...drawing.gears import draw_gears
+from ...drawing.svg import Heading
 from ...gears import GearAnalysis
 from ...scene import Scene
 
@@ -16,4 +19,12 @@ def gear_sheets(scene: Scene, train: GearAnalysis, stem: str, style: Style) -> d
     """The gear sheet when the scene draws it (file name → SVG)."""
     if "gears" not in scene.draw:
         return {}
-    return {}
+    s = train.speeds
+    inputs = ", ".join(f"n_{name} = {float(n):g} rpm" for name, n in s.train.inputs)
+    sheet = gear_sheet(train)
+    notes = [f"W = 3·{s.structure.n} − 2·{s.structure.p5} − {s.structure.p4} = {s.structure.mobility}; "
+             f"given {inputs}"]
+    if sheet.nominal:
+        notes.append("no module given: the wheels are drawn with a module of 1 mm")
+    return {f"{stem}-gears.svg": draw_gears(sheet, Heading(scene.title, "Gear train: velocity pictures", inputs),
+                                             ident="gears", style=style, notes=tuple(notes))}

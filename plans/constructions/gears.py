@@ -1,0 +1,317 @@
+"""The gear sheet as pure geometry, in millimetres of paper (y up): the train's scheme in the
+textbook's side view (shafts along x, radii along y), beside it the linear-velocity picture on
+the same radius axis, and below that the angular-velocity picture (Smirnov's method).
+
+- **Side view**, to μl: each wheel a segment of its pitch diameter across its axis, in the
+  plane (x) of its meshes; shafts along x at their axes' heights; each carrier an arm from the
+  central axis to its planets' axle. The planets and their carrier are drawn mirrored below the
+  central axis too, as the textbook draws a planetary train.
+- **Linear-velocity picture**, to μV: a point at height y of link L moves (perpendicular to the
+  drawing) at v = ω_L·(y − y_L) + v_L, where y_L is L's axis and v_L = ω_H·y_L the velocity of
+  that axis (0 on the frame). Each link's velocities are a straight line through its point of
+  zero velocity; at each pitch point the two wheels share one vector (drawn from the radius
+  axis, + to the right).
+- **Angular-velocity picture**: from a pole at distance h below a horizontal line, a ray
+  parallel to each link's line cuts the line at h·tan ψ_L = h·ω_L·μl/μV from the foot of the
+  pole, so ω_L = segment·μω with μω = μV/(μl·h).
+
+Without modules the wheels are drawn with a nominal module of 1 mm (``nominal``).
+
+Reads a solved train (plans.gears); nothing here draws.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from ..gears import GearAnalysis
+from .scales import standard_scale
+
+__all__ = ["GearSheet", "WheelMark", "ShaftMark", "CarrierMark", "LinkLine", "PitchVector", "OmegaSegment",
+           "gear_sheet", "PLANE_MM", "H_CHOICES_MM"]
+
+#: Distance between the planes of meshes along the shafts in the side view, mm.
+PLANE_MM = 22.0
+#: Gap between the side view and the linear-velocity picture's radius axis, mm.
+GAP_MM = 40.0
+#: Pole distances tried for the angular-velocity picture, largest first, mm.
+H_CHOICES_MM = (60.0, 50.0, 40.0, 30.0, 25.0, 20.0, 15.0, 10.0)
+#: Longest ω segment allowed, mm (the picture's half width).
+OMEGA_MAX_MM = 80.0
+#: The side view's height is kept within this, mm; the velocity picture's half width within this.
+SIDE_MAX_MM, VELOCITY_MAX_MM = 200.0, 110.0
+
+
+@dataclass(frozen=True)
+class WheelMark:
+    """A wheel in the side view: ``x`` its plane, ``y`` its axis, ``r`` its pitch radius (mm),
+    ``internal`` a ring gear, ``mirror`` drawn again below the central axis (a planet)."""
+
+    name: str
+    link: str
+    x: float
+    y: float
+    r: float
+    internal: bool
+    fixed: bool
+    mirror: bool
+
+
+@dataclass(frozen=True)
+class ShaftMark:
+    """A link's shaft from ``x0`` to ``x1`` at height ``y`` (mm); ``frame`` when its axis is fixed
+    in the frame (drawn with a bearing), ``fixed`` when the link is held still."""
+
+    link: str
+    x0: float
+    x1: float
+    y: float
+    frame: bool
+    fixed: bool
+    mirror: bool
+
+
+@dataclass(frozen=True)
+class CarrierMark:
+    """Carrier ``name``: its arm as a polyline from its shaft on the central axis to the planets'
+    axle (mm), drawn mirrored below the axis too."""
+
+    name: str
+    path: tuple[tuple[float, float], ...]
+
+
+@dataclass(frozen=True)
+class LinkLine:
+    """Link ``link``'s velocities in the linear-velocity picture: the segment from ``start`` to
+    ``end`` (mm), ω (rad/s) its angular velocity, ``zero`` the height of its point at rest (mm,
+    None when ω = 0: the link translates, or is at rest)."""
+
+    link: str
+    start: tuple[float, float]
+    end: tuple[float, float]
+    omega: float
+    zero: float | None
+
+
+@dataclass(frozen=True)
+class PitchVector:
+    """The common velocity of wheels ``a`` and ``b`` at their pitch point: ``v`` (m/s, + to the
+    right: out of the drawing for a counter-clockwise ω at positive heights), drawn from ``tail``
+    on the radius axis to ``head`` (mm)."""
+
+    a: str
+    b: str
+    v: float
+    tail: tuple[float, float]
+    head: tuple[float, float]
+
+
+@dataclass(frozen=True)
+class OmegaSegment:
+    """ω of ``link`` (rad/s) in the angular-velocity picture: from the foot of the pole ``tail``
+    along the line to ``head`` (mm); its ray runs from the pole to ``head``."""
+
+    link: str
+    omega: float
+    tail: tuple[float, float]
+    head: tuple[float, float]
+
+
+@dataclass(frozen=True)
+class GearSheet:
+    """Everything the gear sheet draws (mm, y up) and its scales: μl (m/mm), μV ((m/s)/mm),
+    h (mm) and μω = μV/(μl·h) ((rad/s)/mm)."""
+
+    mu_l: float
+    mu_v: float
+    h: float
+    wheels: tuple[WheelMark, ...]
+    shafts: tuple[ShaftMark, ...]
+    carriers: tuple[CarrierMark, ...]
+    axis_x: float                       # the linear picture's radius axis (v = 0)
+    lines: tuple[LinkLine, ...]
+    pitch: tuple[PitchVector, ...]
+    pole: tuple[float, float]
+    omega: tuple[OmegaSegment, ...]
+    nominal: bool                       # drawn with a nominal module (no module given)
+
+    @property
+    def mu_omega(self) -> float:
+        return self.mu_v / (self.mu_l * self.h)
+
+
+def _planes(analysis: GearAnalysis) -> dict[str, int]:
+    """The plane (index along the shafts) of each wheel: meshes that share a wheel share a plane."""
+    train = analysis.speeds.train
+    plane: dict[str, int] = {}
+    groups: list[set[str]] = []
+    for a, b in train.meshes:
+        hit = [g for g in groups if a in g or b in g]
+        merged = {a, b}.union(*hit)
+        groups = [g for g in groups if g not in hit] + [merged]
+    order = [w.name for w in train.wheels]
+    groups.sort(key=lambda g: min(order.index(n) for n in g))
+    for k, g in enumerate(groups):
+        for n in g:
+            plane[n] = k
+    for w in train.wheels:
+        plane.setdefault(w.name, len(groups) + len([n for n in plane if plane[n] >= len(groups)]))
+    return plane
+
+
+def _heights(analysis: GearAnalysis, radius: dict[str, float]) -> dict[str, float]:
+    """The height of each link's axis, m: the central axis 0, planets at their carrier's arm,
+    fixed-axis wheels placed by their frame meshes (the next wheel above, a ring around)."""
+    s = analysis.speeds.structure
+    height: dict[str, float] = {}
+    for link in s.links:
+        if link.carrier or any(m.reference is not None and link.name in (m.link_a, m.link_b)
+                               for m in s.meshes if link.axis_on is None):
+            height[link.name] = 0.0
+    if not height:
+        height[s.links[0].name] = 0.0
+    for _ in range(len(s.meshes) + 1):
+        for m in s.meshes:
+            if m.reference is not None:
+                continue
+            ra, rb = radius[m.a], radius[m.b]
+            if m.link_a in height and m.link_b not in height:
+                ya = height[m.link_a]
+                height[m.link_b] = ya + ra + rb if m.external else ya + ra - rb
+            elif m.link_b in height and m.link_a not in height:
+                yb = height[m.link_b]
+                height[m.link_a] = yb + rb + ra if m.external else yb + rb - ra
+    arm = _arms(analysis, radius)
+    for link in s.links:
+        if link.axis_on is not None:
+            height[link.name] = arm[link.axis_on]
+        height.setdefault(link.name, 0.0)
+    return height
+
+
+def _arms(analysis: GearAnalysis, radius: dict[str, float]) -> dict[str, float]:
+    """Each carrier's arm, m (from the geometry, or from the nominal radii)."""
+    g = analysis.geometry
+    s = analysis.speeds.structure
+    train = s.train
+    out = {}
+    for c in train.carriers:
+        if g is not None and c in g.arm:
+            out[c] = g.arm[c] / 1000.0
+            continue
+        arms = []
+        for m in s.meshes:
+            for p, q in ((m.a, m.b), (m.b, m.a)):
+                if train.wheel(p).on == c and s.link_of(q).axis_on is None:
+                    arms.append(radius[q] - radius[p] if train.wheel(q).internal else radius[q] + radius[p])
+        out[c] = max(arms) if arms else max(radius[n] for link in s.planets_of(c) for n in link.members) * 2
+    return out
+
+
+def gear_sheet(analysis: GearAnalysis) -> GearSheet:
+    """The gear sheet of a solved train (see the module)."""
+    speeds = analysis.speeds
+    s, train = speeds.structure, speeds.train
+    nominal = analysis.geometry is None
+    radius = {w.name: (1.0 if nominal else w.module) * w.teeth / 2000.0 for w in train.wheels}   # m
+    height = _heights(analysis, radius)
+    plane = _planes(analysis)
+    omega = {link.name: speeds.omega(link.name) for link in s.links}
+    link_of = {m: s.link_of(m) for m in train.names}
+    carrier_of_link = {link.name: link.axis_on for link in s.links}
+
+    def v_at(link: str, y: float) -> float:
+        c = carrier_of_link[link]
+        v_axis = 0.0 if c is None else omega[link_of[c].name] * height[link]
+        return omega[link] * (y - height[link]) + v_axis
+
+    top = max(abs(height[link_of[w.name].name]) + radius[w.name] for w in train.wheels)
+    mirrored = bool(train.carriers)
+    extent = 2.0 * top if mirrored else top + max(0.0, -min(height[link_of[w.name].name] - radius[w.name]
+                                                         for w in train.wheels))
+    mu_l = standard_scale(extent, window=(0.55 * SIDE_MAX_MM, SIDE_MAX_MM), limit=SIDE_MAX_MM, extent=extent)
+    mm = 1.0 / mu_l                                      # paper mm per metre
+    spans = _spans(analysis, radius, height)
+    v_max = max(abs(v_at(link, y)) for link, (y0, y1) in spans.items() for y in (y0, y1))
+    mu_v = standard_scale(v_max, window=(0.5 * VELOCITY_MAX_MM, VELOCITY_MAX_MM), limit=VELOCITY_MAX_MM,
+                          extent=v_max) if v_max > 0 else 1.0
+    x_of = {n: PLANE_MM * k for n, k in plane.items()}
+    wheels = tuple(WheelMark(name=w.name, link=link_of[w.name].name, x=x_of[w.name],
+                             y=height[link_of[w.name].name] * mm, r=radius[w.name] * mm, internal=w.internal,
+                             fixed=link_of[w.name].fixed, mirror=w.on is not None) for w in train.wheels)
+    x_max = max(x_of.values())
+    shafts, carriers = [], []
+    for link in s.links:
+        xs = [x_of[n] for n in link.members if n in x_of]
+        if link.carrier:
+            planets = [x_of[n] for p in s.planets_of(next(m for m in link.members if m in train.carriers))
+                       for n in p.members]
+            xs += [min(planets) - PLANE_MM / 2, max(planets) + PLANE_MM / 2]
+        if not xs:
+            continue
+        lo, hi = min(xs), max(xs)
+        on_frame = link.axis_on is None
+        if on_frame:                                   # room for the bearing outside the wheels
+            lo, hi = (lo - PLANE_MM * 0.6, hi) if lo <= 0.5 * x_max else (lo, hi + PLANE_MM * 0.6)
+        shafts.append(ShaftMark(link=link.name, x0=lo, x1=hi, y=height[link.name] * mm, frame=on_frame,
+                                fixed=link.fixed, mirror=not on_frame))
+    for c in train.carriers:
+        planets = [x_of[n] for p in s.planets_of(c) for n in p.members]
+        arm = _arms(analysis, radius)[c] * mm
+        x_arm = min(planets) - PLANE_MM / 2
+        carriers.append(CarrierMark(name=c, path=((x_arm, 0.0), (x_arm, arm), (max(planets) + PLANE_MM / 2, arm))))
+    axis_x = x_max + PLANE_MM + GAP_MM + VELOCITY_MAX_MM * 0.5
+    lines = []
+    for link in s.links:
+        y0, y1 = spans[link.name]
+        w = omega[link.name]
+        zero = None if w == 0 else (height[link.name] - (v_at(link.name, height[link.name]) / w)) * mm
+        lines.append(LinkLine(link=link.name, start=(axis_x + v_at(link.name, y0) / mu_v, y0 * mm),
+                              end=(axis_x + v_at(link.name, y1) / mu_v, y1 * mm), omega=w, zero=zero))
+    pitch = []
+    for m in s.meshes:
+        y = _pitch_height(m, radius, height, train)
+        v = v_at(m.link_a, y)
+        pitch.append(PitchVector(a=m.a, b=m.b, v=v, tail=(axis_x, y * mm), head=(axis_x + v / mu_v, y * mm)))
+    w_max = max(abs(w) for w in omega.values())
+    h = next((h for h in H_CHOICES_MM if h * w_max * mu_l / mu_v <= OMEGA_MAX_MM), H_CHOICES_MM[-1])
+    line_y = -0.25 * extent * mm if mirrored else min(0.0, min(ln.start[1] for ln in lines)) - 15.0
+    pole = (axis_x, line_y - h)
+    segments = tuple(OmegaSegment(link=link.name, omega=omega[link.name], tail=(axis_x, line_y),
+                                  head=(axis_x + h * omega[link.name] * mu_l / mu_v, line_y))
+                     for link in s.links if not link.fixed)
+    return GearSheet(mu_l=mu_l, mu_v=mu_v, h=h, wheels=wheels, shafts=tuple(shafts), carriers=tuple(carriers),
+                     axis_x=axis_x, lines=tuple(lines), pitch=tuple(pitch), pole=pole, omega=segments,
+                     nominal=nominal)
+
+
+def _spans(analysis: GearAnalysis, radius: dict[str, float], height: dict[str, float]) -> dict[str, tuple[float, float]]:
+    """The heights (m) over which each link's velocity line is drawn: a central link from its axis
+    to its largest wheel's pitch radius, a carrier to its arm, any other link across its wheels."""
+    s = analysis.speeds.structure
+    train = s.train
+    arms = _arms(analysis, radius)
+    out = {}
+    for link in s.links:
+        wheels = [n for n in link.members if n not in train.carriers]
+        r = max((radius[n] for n in wheels), default=0.0)
+        y = height[link.name]
+        if link.carrier:
+            c = next(m for m in link.members if m in train.carriers)
+            out[link.name] = (0.0, max(arms[c], r))
+        elif link.axis_on is None and y == 0.0 and train.carriers:
+            out[link.name] = (0.0, r)
+        else:
+            out[link.name] = (y - r, y + r)
+    return out
+
+
+def _pitch_height(m, radius: dict[str, float], height: dict[str, float], train) -> float:
+    """The height of mesh ``m``'s pitch point, m: between the axes (external), or on the ring's
+    circle on the side of the inner wheel (internal)."""
+    ya, yb = height[m.link_a], height[m.link_b]
+    if m.external:
+        return ya + radius[m.a] * (1.0 if yb >= ya else -1.0)
+    ring, ry, other_y = (m.a, ya, yb) if train.wheel(m.a).internal else (m.b, yb, ya)
+    return ry + radius[ring] * (1.0 if other_y >= ry else -1.0)

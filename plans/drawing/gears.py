@@ -1,0 +1,187 @@
+"""The gear sheet (``-gears``): the train's side view, its linear-velocity picture on the same
+radius axis and its angular-velocity picture (see :mod:`plans.constructions.gears`).
+
+The pitch-point velocities (``vp:a-b``) are tagged vectors of the group ``data-plan="gear-velocity"``
+(μ = μV), the ω segments (``omega:L``) of ``data-plan="gear-omega"`` (μ = μω), so ``plans check``
+measures them; each link's velocity line carries ``data-link-line`` and each ray of the angular
+picture ``data-ray`` with the link's name, so the checker also finds every ray parallel to its
+link's line.
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..constructions.gears import GearSheet
+from .canvas import Canvas, fmt
+from .marks import bounds, markup, vector
+from .scheme import _hatch, support
+from .sheet import FORMATS, TitleBlock, choose_format, new_sheet, note_lines
+from .style import Style
+from .svg import Heading
+
+__all__ = ["draw_gears"]
+
+#: Length of the ticks at a wheel's pitch diameter, mm (each side of the wheel's line).
+TICK_MM = 2.0
+#: How far a ring gear's rim stands out beyond its pitch circle, mm.
+RIM_MM = 5.0
+#: Room kept below the drawing for the notes, mm.
+NOTE_ROOM_MM = 10.0
+
+
+def _direction(canvas: Canvas, tail, head) -> str:
+    (x0, y0), (x1, y1) = canvas.paper(tail), canvas.paper(head)
+    return repr(math.degrees(math.atan2(y1 - y0, x1 - x0)) + 0.0)
+
+
+def _coords(sheet: GearSheet) -> list[tuple[float, float]]:
+    pts: list[tuple[float, float]] = []
+    for w in sheet.wheels:
+        extra = RIM_MM + 3.0 if w.internal else TICK_MM
+        for sign in ((1, -1) if w.mirror else (1,)):
+            pts += [(w.x - TICK_MM, sign * w.y - w.r - extra), (w.x + TICK_MM, sign * w.y + w.r + extra)]
+    for s in sheet.shafts:
+        pts += [(s.x0 - 6.0, s.y - 8.0), (s.x1, s.y)]
+    for ln in sheet.lines:
+        pts += [ln.start, ln.end]
+    pts += [sheet.pole, (sheet.pole[0], sheet.pole[1] - 6.0)]
+    pts += [seg.head for seg in sheet.omega]
+    return pts
+
+
+def draw_gears(sheet: GearSheet, heading: Heading, *, ident: str, style: Style = Style(),
+               notes: tuple[str, ...] = ()) -> str:
+    """SVG text of the gear sheet (see the module)."""
+    x0, y0, x1, y1 = bounds(_coords(sheet))
+    box = (x0, y0 - NOTE_ROOM_MM, x1, y1)
+    f = choose_format(box[2] - box[0], box[3] - box[1]) or FORMATS[2]
+    scales = (f"μ_l = {sheet.mu_l:g} m/mm, μ_V = {sheet.mu_v:g} (m/s)/mm, h = {sheet.h:g} mm, "
+              f"μ_ω = {sheet.mu_omega:.4g} (rad/s)/mm")
+    dwg, canvas = new_sheet(f, box, ident=ident, style=style,
+                            block=TitleBlock(heading.mechanism, heading.sheet, heading.position, scales))
+    labels = dwg.g(id=f"{ident}-labels", fill=style.colour)
+    _side_view(dwg, canvas, sheet, ident, style, labels)
+    _velocity_picture(dwg, canvas, sheet, ident, style, labels)
+    _omega_picture(dwg, canvas, sheet, ident, style, labels)
+    dwg.add(labels)
+    if notes:
+        note_lines(canvas, dwg.add(dwg.g(id=f"{ident}-notes")), notes, style)
+    canvas.place_labels(dwg.add(dwg.g(id=f"{ident}-leaders")))
+    return dwg.tostring()
+
+
+def _side_view(dwg, canvas: Canvas, sheet: GearSheet, ident: str, style: Style, labels) -> None:
+    g = dwg.g(id=f"{ident}-scheme", stroke=style.colour, fill="none", stroke_linecap="round")
+    g.attribs["data-mu"] = repr(sheet.mu_l)
+    g.attribs["data-plan"] = "scheme"
+    thick, sw = style.link, fmt(style.link, 3)
+    xs = [s.x0 for s in sheet.shafts] + [s.x1 for s in sheet.shafts]
+    canvas.line(g, (min(xs) - 8.0, 0.0), (max(xs) + 8.0, 0.0), width=style.thin, stroke=style.construction_colour,
+                stroke_width=fmt(style.thin, 3), stroke_dasharray="8 1.5 1 1.5", id=f"{ident}-axis")
+    for k, s in enumerate(sheet.shafts):
+        for j, sign in enumerate((1, -1) if s.mirror else (1,)):
+            y = sign * s.y
+            canvas.line(g, (s.x0, y), (s.x1, y), width=thick, stroke_width=sw, id=f"{ident}-shaft{k}-{j}")
+        if s.frame:
+            end = s.x0 if s.x0 <= min(xs) + 1e-9 or s.y != 0.0 else s.x1
+            support(canvas, g, (end, s.y), k, f"{ident}-b", style)
+    for k, c in enumerate(sheet.carriers):
+        for j, sign in enumerate((1, -1)):
+            canvas.polyline(g, [(x, sign * y) for x, y in c.path], width=thick, stroke_width=sw,
+                            id=f"{ident}-carrier{k}-{j}")
+        end = c.path[1]
+        canvas.label(labels, end, markup(c.name), size=style.text, prefer=(-1.0, 0.3), ident=f"{ident}-cl{k}",
+                     near=1.0)
+    for k, w in enumerate(sheet.wheels):
+        for j, sign in enumerate((1, -1) if w.mirror else (1,)):
+            y = sign * w.y
+            top, bottom = y + w.r, y - w.r
+            wid = f"{ident}-wheel{k}-{j}"
+            if w.internal:
+                for side, (pitch, rim) in enumerate(((top, top + RIM_MM), (bottom, bottom - RIM_MM))):
+                    canvas.line(g, (w.x, pitch), (w.x, rim), width=thick, stroke_width=sw, id=f"{wid}-{side}")
+                    canvas.line(g, (w.x - TICK_MM, pitch), (w.x + TICK_MM, pitch), width=thick, stroke_width=sw,
+                                id=f"{wid}-t{side}")
+                    if w.fixed:
+                        a, b = (w.x - 4.0, rim), (w.x + 4.0, rim)
+                        canvas.line(g, a, b, width=style.vector, stroke_width=fmt(style.vector, 3),
+                                    id=f"{wid}-g{side}")
+                        canvas.strokes(g, _hatch(a, b, 1.0 if side == 0 else -1.0, style),
+                                       stroke_width=fmt(style.thin, 3), id=f"{wid}-h{side}")
+            else:
+                canvas.line(g, (w.x, bottom), (w.x, top), width=thick, stroke_width=sw, id=wid)
+                for side, yy in enumerate((top, bottom)):
+                    canvas.line(g, (w.x - TICK_MM, yy), (w.x + TICK_MM, yy), width=thick, stroke_width=sw,
+                                id=f"{wid}-t{side}")
+            if j == 0:
+                at = (w.x, top + RIM_MM) if w.internal else (w.x, y + 0.55 * w.r)
+                canvas.label(labels, at, markup(w.name), size=style.text, prefer=(1.0, 0.6 if w.internal else 0.0),
+                             ident=f"{ident}-wl{k}", near=1.0)
+    dwg.add(g)
+
+
+def _velocity_picture(dwg, canvas: Canvas, sheet: GearSheet, ident: str, style: Style, labels) -> None:
+    g = dwg.g(id=f"{ident}-velocity", stroke=style.colour, fill="none", stroke_linecap="round")
+    g.attribs["data-mu"] = repr(sheet.mu_v)
+    g.attribs["data-plan"] = "gear-velocity"
+    g.attribs["data-vectors"] = str(len(sheet.pitch))
+    ys = [p for ln in sheet.lines for p in (ln.start[1], ln.end[1])]
+    el = canvas.line(g, (sheet.axis_x, min(ys + [0.0]) - 4.0), (sheet.axis_x, max(ys) + 6.0), width=style.thin,
+                     stroke=style.construction_colour, stroke_width=fmt(style.thin, 3), id=f"{ident}-raxis")
+    el.attribs["data-construction"] = "radius axis"
+    canvas.label(labels, (sheet.axis_x, max(ys) + 6.0), "r", size=style.text, prefer=(-1.0, 0.0),
+                 ident=f"{ident}-raxis-l", near=0.8)
+    for k, ln in enumerate(sheet.lines):
+        el = canvas.line(g, ln.start, ln.end, width=style.vector, stroke=style.component_colour,
+                         stroke_width=fmt(style.vector, 3), id=f"{ident}-line{k}")
+        el.attribs["data-construction"] = "velocity line"
+        el.attribs["data-link-line"] = ln.link
+        at = (0.4 * ln.start[0] + 0.6 * ln.end[0], 0.4 * ln.start[1] + 0.6 * ln.end[1])
+        dx, dy = ln.end[0] - ln.start[0], ln.end[1] - ln.start[1]
+        canvas.label(labels, at, markup(ln.link), size=style.small_text, prefer=(dy, -dx) if dx or dy else (1.0, 0.0),
+                     ident=f"{ident}-ll{k}", near=0.8, fill=style.component_colour)
+    for k, p in enumerate(sheet.pitch):
+        line = vector(canvas, g, p.tail, p.head, style.vector_colour, f"{ident}-vp{k}", f"{ident}-vph{k}", style)
+        line.attribs["data-quantity"] = f"vp:{p.a}-{p.b}"
+        line.attribs["data-value"] = repr(abs(p.v))
+        line.attribs["data-direction"] = _direction(canvas, p.tail, p.head) if p.v != 0 else "0.0"
+        line.attribs["data-from"], line.attribs["data-to"] = f"r{p.a}{p.b}", f"v{p.a}{p.b}"
+        canvas.label(labels, p.head, f"v_{{{p.a}{p.b}}}", size=style.small_text, prefer=(1.0, 1.0),
+                     ident=f"{ident}-vpl{k}", near=0.8, fill=style.vector_colour)
+    dwg.add(g)
+
+
+def _omega_picture(dwg, canvas: Canvas, sheet: GearSheet, ident: str, style: Style, labels) -> None:
+    g = dwg.g(id=f"{ident}-omega", stroke=style.colour, fill="none", stroke_linecap="round")
+    g.attribs["data-mu"] = repr(sheet.mu_omega)
+    g.attribs["data-plan"] = "gear-omega"
+    drawn = [s for s in sheet.omega if s.omega != 0.0]
+    g.attribs["data-vectors"] = str(len(drawn))
+    g.attribs["data-pole"] = f"{fmt(canvas.paper(sheet.pole)[0], 3)} {fmt(canvas.paper(sheet.pole)[1], 3)}"
+    line_y = sheet.pole[1] + sheet.h
+    xs = [s.head[0] for s in sheet.omega] + [sheet.axis_x]
+    el = canvas.line(g, (min(xs) - 6.0, line_y), (max(xs) + 6.0, line_y), width=style.thin,
+                     stroke=style.construction_colour, stroke_width=fmt(style.thin, 3), id=f"{ident}-wline")
+    el.attribs["data-construction"] = "ω line"
+    el = canvas.line(g, sheet.pole, (sheet.pole[0], line_y), width=style.thin, stroke=style.construction_colour,
+                     stroke_width=fmt(style.thin, 3), stroke_dasharray=style.dash, id=f"{ident}-h")
+    el.attribs["data-construction"] = "pole distance h"
+    canvas.circle(g, sheet.pole, 0.8, filled=True, fill=style.colour, stroke="none", id=f"{ident}-pole")
+    canvas.label(labels, sheet.pole, "P", size=style.text, prefer=(-1.0, -1.0), ident=f"{ident}-pl", near=1.0)
+    canvas.label(labels, (sheet.pole[0], sheet.pole[1] + sheet.h / 2), f"h = {sheet.h:g} mm", size=style.small_text,
+                 italic=False, prefer=(-1.0, 0.0), ident=f"{ident}-hl", near=1.0)
+    for k, s in enumerate(sheet.omega):
+        ray = canvas.line(g, sheet.pole, s.head, width=style.thin, stroke=style.component_colour,
+                          stroke_width=fmt(style.thin, 3), id=f"{ident}-ray{k}")
+        ray.attribs["data-construction"] = "ray"
+        ray.attribs["data-ray"] = s.link
+    for k, s in enumerate(drawn):
+        line = vector(canvas, g, s.tail, s.head, style.vector_colour, f"{ident}-w{k}", f"{ident}-wh{k}", style)
+        line.attribs["data-quantity"] = f"omega:{s.link}"
+        line.attribs["data-value"] = repr(abs(s.omega))
+        line.attribs["data-direction"] = _direction(canvas, s.tail, s.head)
+        line.attribs["data-from"], line.attribs["data-to"] = "o", f"w{s.link}"
+        canvas.label(labels, s.head, f"ω_{{{s.link}}}", size=style.small_text, prefer=(0.3, 1.0),
+                     ident=f"{ident}-wl{k}", near=0.8, fill=style.vector_colour)
+    dwg.add(g)
