@@ -8,6 +8,7 @@ writes.
 
 from .errors import (AssemblyError, DrawingError, OutputError, PlansError, SceneError, SingularPositionError,
                      StructureError)
+from . import gears
 from .kinematics import Motion, analyse
 from .model import Mechanism, build_mechanism
 from .pipeline import Sheet, Sheets, render

@@ -28,7 +28,7 @@ from dataclasses import dataclass
 from ..gears import GearAnalysis
 from .scales import standard_scale
 
-__all__ = ["GearSheet", "WheelMark", "ShaftMark", "CarrierMark", "LinkLine", "PitchVector", "OmegaSegment",
+__all__ = ["GearSheet", "WheelMark", "ShaftMark", "CarrierMark", "LinkLine", "PitchVector", "OmegaSegment", "SpeedRow",
            "gear_sheet", "PLANE_MM", "H_CHOICES_MM"]
 
 #: Distance between the planes of meshes along the shafts in the side view, mm.
@@ -119,6 +119,16 @@ class OmegaSegment:
 
 
 @dataclass(frozen=True)
+class SpeedRow:
+    """One row of the sheet's speed table: a wheel (``teeth``) or a carrier (None)."""
+
+    name: str
+    teeth: int | None
+    rpm: float
+    omega: float
+
+
+@dataclass(frozen=True)
 class GearSheet:
     """Everything the gear sheet draws (mm, y up) and its scales: μl (m/mm), μV ((m/s)/mm),
     h (mm) and μω = μV/(μl·h) ((rad/s)/mm)."""
@@ -135,6 +145,7 @@ class GearSheet:
     pole: tuple[float, float]
     omega: tuple[OmegaSegment, ...]
     nominal: bool                       # drawn with a nominal module (no module given)
+    table: tuple[SpeedRow, ...] = ()
 
     @property
     def mu_omega(self) -> float:
@@ -283,7 +294,8 @@ def gear_sheet(analysis: GearAnalysis) -> GearSheet:
                      for link in s.links if not link.fixed)
     return GearSheet(mu_l=mu_l, mu_v=mu_v, h=h, wheels=wheels, shafts=tuple(shafts), carriers=tuple(carriers),
                      axis_x=axis_x, lines=tuple(lines), pitch=tuple(pitch), pole=pole, omega=segments,
-                     nominal=nominal)
+                     nominal=nominal, table=tuple(SpeedRow(n, train.wheel(n).teeth if n not in train.carriers else None,
+                                                           float(speeds.rpm[n]), speeds.omega(n)) for n in train.names))
 
 
 def _spans(analysis: GearAnalysis, radius: dict[str, float], height: dict[str, float]) -> dict[str, tuple[float, float]]:

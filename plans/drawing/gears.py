@@ -19,6 +19,7 @@ from .scheme import _hatch, support
 from .sheet import FORMATS, TitleBlock, choose_format, new_sheet, note_lines
 from .style import Style
 from .svg import Heading
+from .text import runs, width
 
 __all__ = ["draw_gears"]
 
@@ -26,6 +27,11 @@ __all__ = ["draw_gears"]
 TICK_MM = 2.0
 #: How far a ring gear's rim stands out beyond its pitch circle, mm.
 RIM_MM = 5.0
+#: Where a turning ring gear's disc runs down to its shaft, mm beyond the ring's plane.
+DISC_MM = 16.0
+#: The speed table's column widths and row height, mm.
+TABLE_COLUMNS_MM = (16.0, 12.0, 26.0, 26.0)
+ROW_MM = 6.0
 #: Room kept below the drawing for the notes, mm.
 NOTE_ROOM_MM = 10.0
 
@@ -47,7 +53,55 @@ def _coords(sheet: GearSheet) -> list[tuple[float, float]]:
         pts += [ln.start, ln.end]
     pts += [sheet.pole, (sheet.pole[0], sheet.pole[1] - 6.0)]
     pts += [seg.head for seg in sheet.omega]
+    x, y = _table_at(sheet)
+    pts += [(x, y), (x + sum(TABLE_COLUMNS_MM), y - ROW_MM * (len(sheet.table) + 1))]
     return pts
+
+
+def _table_at(sheet: GearSheet) -> tuple[float, float]:
+    """The table's top left corner: under the side view, mm."""
+    x0 = min([s.x0 for s in sheet.shafts] + [w.x for w in sheet.wheels]) - 8.0
+    bottom = min(min(w.y for w in sheet.wheels if not w.mirror) - max(w.r for w in sheet.wheels) - 6.0,
+                 min((-w.y - w.r - 6.0 for w in sheet.wheels if w.mirror), default=0.0))
+    return x0, bottom - 12.0
+
+
+def _table(dwg, canvas: Canvas, sheet: GearSheet, at: tuple[float, float], ident: str, style: Style) -> None:
+    """The speeds of every wheel and carrier: name, teeth, n (rpm), ω (rad/s)."""
+    header = ["link", "z", "n, rpm", "ω, rad/s"]
+    rows = [header] + [[markup(r.name), "—" if r.teeth is None else str(r.teeth), _number(r.rpm, 6),
+                        _number(r.omega, 5)] for r in sheet.table]
+    g = dwg.g(id=f"{ident}-table", stroke=style.colour, fill="none")
+    g.attribs["class"] = "value-table"
+    texts = dwg.g(id=f"{ident}-table-text", fill=style.colour)
+    x0, top = at
+    total = sum(TABLE_COLUMNS_MM)
+    for k in range(len(rows) + 1):
+        w = style.vector if k in (0, 1, len(rows)) else style.thin
+        canvas.line(g, (x0, top - k * ROW_MM), (x0 + total, top - k * ROW_MM), width=w, stroke_width=fmt(w, 3),
+                    id=f"{ident}-tr{k}")
+    x = x0
+    for k in range(len(TABLE_COLUMNS_MM) + 1):
+        w = style.vector if k in (0, len(TABLE_COLUMNS_MM)) else style.thin
+        canvas.line(g, (x, top), (x, top - len(rows) * ROW_MM), width=w, stroke_width=fmt(w, 3), id=f"{ident}-tc{k}")
+        if k < len(TABLE_COLUMNS_MM):
+            x += TABLE_COLUMNS_MM[k]
+    size = style.small_text
+    for r, row in enumerate(rows):
+        x = x0
+        base = top - r * ROW_MM - ROW_MM / 2 - 0.26 * size
+        for k, text in enumerate(row):
+            w = width(runs(text), size, False)
+            canvas.text(texts, canvas.paper((x + TABLE_COLUMNS_MM[k] / 2 - w / 2, base)), text, size=size,
+                        ident=f"{ident}-t{r}-{k}")
+            x += TABLE_COLUMNS_MM[k]
+    dwg.add(g)
+    dwg.add(texts)
+
+
+def _number(x: float, digits: int) -> str:
+    """A table entry: ``digits`` significant digits, a true minus sign."""
+    return "0" if x == 0.0 else f"{x:.{digits}g}".replace("-", "−")
 
 
 def draw_gears(sheet: GearSheet, heading: Heading, *, ident: str, style: Style = Style(),
@@ -64,6 +118,7 @@ def draw_gears(sheet: GearSheet, heading: Heading, *, ident: str, style: Style =
     _side_view(dwg, canvas, sheet, ident, style, labels)
     _velocity_picture(dwg, canvas, sheet, ident, style, labels)
     _omega_picture(dwg, canvas, sheet, ident, style, labels)
+    _table(dwg, canvas, sheet, _table_at(sheet), ident, style)
     dwg.add(labels)
     if notes:
         note_lines(canvas, dwg.add(dwg.g(id=f"{ident}-notes")), notes, style)
@@ -80,6 +135,8 @@ def _side_view(dwg, canvas: Canvas, sheet: GearSheet, ident: str, style: Style, 
     canvas.line(g, (min(xs) - 8.0, 0.0), (max(xs) + 8.0, 0.0), width=style.thin, stroke=style.construction_colour,
                 stroke_width=fmt(style.thin, 3), stroke_dasharray="8 1.5 1 1.5", id=f"{ident}-axis")
     for k, s in enumerate(sheet.shafts):
+        if s.fixed:
+            continue                                   # a link held still is part of the frame
         for j, sign in enumerate((1, -1) if s.mirror else (1,)):
             y = sign * s.y
             canvas.line(g, (s.x0, y), (s.x1, y), width=thick, stroke_width=sw, id=f"{ident}-shaft{k}-{j}")
@@ -103,6 +160,9 @@ def _side_view(dwg, canvas: Canvas, sheet: GearSheet, ident: str, style: Style, 
                     canvas.line(g, (w.x, pitch), (w.x, rim), width=thick, stroke_width=sw, id=f"{wid}-{side}")
                     canvas.line(g, (w.x - TICK_MM, pitch), (w.x + TICK_MM, pitch), width=thick, stroke_width=sw,
                                 id=f"{wid}-t{side}")
+                    if not w.fixed:                # the ring's disc to its shaft
+                        canvas.polyline(g, [(w.x, rim), (w.x + DISC_MM, rim), (w.x + DISC_MM, 0.0)], width=thick,
+                                        stroke_width=sw, id=f"{wid}-d{side}")
                     if w.fixed:
                         a, b = (w.x - 4.0, rim), (w.x + 4.0, rim)
                         canvas.line(g, a, b, width=style.vector, stroke_width=fmt(style.vector, 3),

@@ -20,7 +20,7 @@ def gear_sheets(scene: Scene, train: GearAnalysis, stem: str, style: Style) -> d
     if "gears" not in scene.draw:
         return {}
     s = train.speeds
-    inputs = ", ".join(f"n_{name} = {float(n):g} rpm" for name, n in s.train.inputs)
+    inputs = ", ".join(f"n_{{{name}}} = {float(n):g} rpm".replace("-", "−") for name, n in s.train.inputs)
     sheet = gear_sheet(train)
     notes = [f"W = 3·{s.structure.n} − 2·{s.structure.p5} − {s.structure.p4} = {s.structure.mobility}; "
              f"given {inputs}"]
