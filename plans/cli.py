@@ -184,8 +184,12 @@ def _count(text: str, option: str, lo: int, hi: int) -> int:
 
 
 def _examples() -> list[Path]:
-    root = resources.files("plans.examples")
-    return sorted(Path(str(p)) for p in root.iterdir() if p.name.endswith(".toml"))
+    """The bundled scenes: the linkages, then the gear trains (examples/gears)."""
+    out = []
+    for package in ("plans.examples", "plans.examples.gears"):
+        root = resources.files(package)
+        out += sorted(Path(str(p)) for p in root.iterdir() if p.name.endswith(".toml"))
+    return out
 
 
 def _format_options(parser: argparse.ArgumentParser) -> None:

@@ -20,7 +20,7 @@ import plans
 from plans.checking import inspect_svg
 from plans.layout import measure_layout
 
-EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples" / "gears"
 TRAINS = ("gear_compound_1_17", "gear_idler_1_18", "planetary_1_21", "differential_1_21", "planetary_type_b",
           "press_drive")
 

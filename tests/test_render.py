@@ -168,7 +168,8 @@ def test_missing_file_is_reported(tmp_path, capsys):
 
 def test_demo_renders_packaged_examples(tmp_path):
     assert main(["demo", "-o", str(tmp_path), "-q"]) == 0
-    assert len(list(tmp_path.glob("*.json"))) == len(EXAMPLES)
+    trains = sorted(p.stem for p in (EXAMPLES[0].parent / "gears").glob("*.toml"))
+    assert trains and sorted(p.stem for p in tmp_path.glob("*.json")) == sorted([p.stem for p in EXAMPLES] + trains)
 
 
 def test_plan_images_are_scaled_velocities(rendered):
