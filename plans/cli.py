@@ -11,7 +11,7 @@ from typing import Sequence
 
 import numpy as np
 
-from .errors import OutputError, PlansError, one_line
+from .errors import OutputError, PlansError, SceneError, one_line
 from .export import DEFAULT_DPI, FORMATS, MAX_DPI, MIN_DPI, convert, parse_dpi, parse_formats, require_cairo
 from .output import check_folder, write_files
 from .pipeline import Rendered, render_scene
@@ -192,6 +192,51 @@ def _examples() -> list[Path]:
     return out
 
 
+def _option(value: str, flag: str, kind: type = float) -> float:
+    """A number given on the command line, or a one-line error naming ``flag``."""
+    try:
+        x = kind(value)
+    except ValueError:
+        raise SceneError(f"expected {'a whole number' if kind is int else 'a number'}, got {value!r}", key=flag) \
+            from None
+    return x
+
+
+def _synthesize(args: argparse.Namespace) -> int:
+    """``plans gears synthesize``: print the verified candidates and draw the best."""
+    from .gears.synthesis import synthesize    # here: the other commands need none of it
+    from .pipeline import render
+    from .scene import Scene
+
+    ratio = _option(args.ratio, "--ratio")
+    kind = args.type.strip().upper()
+    planets = int(_option(args.planets, "--planets", int))
+    found = synthesize(ratio, kind, planets, tolerance=_option(args.tolerance, "--tolerance"),
+                       module=_option(args.module, "--module"))
+    if not found:
+        print(f"type {kind} cannot reach i = {ratio:g} with {planets} planets within ±{float(args.tolerance):g} "
+              f"(external wheels 17 … 100 teeth, rings up to 250); try another type")
+        return 0
+    check_folder(args.output)
+    best = found[0]
+    stem = f"synthesis_{kind}_{args.ratio}".replace(".", "_").replace("-", "m")
+    title = f"Planetary train, type {kind}, i = {float(best.ratio):.6g} ({planets} planets)"
+    sheets = render(Scene(title=title, points={}, links={}, sliders=(), drive=None, draw=("gears",),
+                          gears=best.train), stem=stem)
+    sheets.save(args.output)
+    if not args.quiet:
+        print(f"type {kind}, i = {ratio:g} ± {float(args.tolerance):g}, {planets} planets: {len(found)} candidates, "
+              "smallest first (each solved and checked as a train)")
+        print(f"  {'#':>2}  {'teeth':<36} {'ratio':>22}  {'error':>8}  largest z")
+        for k, c in enumerate(found, 1):
+            teeth = ", ".join(f"z_{n} = {z}" for n, z in c.teeth.items())
+            err = (float(c.ratio) - ratio) / ratio
+            print(f"  {k:>2}  {teeth:<36} {str(c.ratio) + ' = ' + format(float(c.ratio), '.6g'):>22}  "
+                  f"{err:>+8.2%}  {c.size}")
+        print(f"  drew the best into {args.output}/{stem}-gears.svg")
+    return 0
+
+
 def _format_options(parser: argparse.ArgumentParser) -> None:
     """``--format`` and ``--dpi`` of render and demo (read as text: plans checks them, so a bad
     value is one line like every other error)."""
@@ -227,6 +272,18 @@ def main(argv: Sequence[str] | None = None) -> int:
     h.add_argument("--seed", metavar="S", help="seed of --random (default 0): the same seed gives the same files")
     h.add_argument("-o", "--output", default="handout", metavar="DIR")
     h.add_argument("-q", "--quiet", action="store_true")
+    gr = sub.add_parser("gears", help="gear trains: planetary synthesis")
+    gsub = gr.add_subparsers(dest="gears_command", required=True)
+    sy = gsub.add_parser("synthesize", help="teeth of a 2K-H planetary train for a ratio: a table of verified "
+                         "candidates, smallest first, and the best one drawn")
+    sy.add_argument("--ratio", required=True, metavar="I", help="input → output ratio, beyond ±1")
+    sy.add_argument("--type", required=True, metavar="A|B|C|D", help="A: sun-planet-ring; B: compound planet, "
+                    "sun and ring; C: compound planet, two rings; D: compound planet, two suns")
+    sy.add_argument("--planets", required=True, metavar="K", help="equally spaced planets, 2 … 12")
+    sy.add_argument("--tolerance", default="0.01", metavar="T", help="relative tolerance of the ratio (default 0.01)")
+    sy.add_argument("--module", default="1", metavar="M", help="module of every wheel, mm (default 1)")
+    sy.add_argument("-o", "--output", default="output", metavar="DIR")
+    sy.add_argument("-q", "--quiet", action="store_true")
     b = sub.add_parser("bench", help="measure what accuracy costs in time: tables, charts and bench.json")
     b.add_argument("-o", "--output", default="output/bench", metavar="DIR")
     b.add_argument("--quick", action="store_true", help="a few small cases only (seconds; for tests)")
@@ -239,6 +296,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             return _render(scenes, args.output, args.quiet, formats, dpi)
         if args.command == "handout":
             return _handout(args.source, args.output, args.quiet, args.random, args.seed)
+        if args.command == "gears":
+            return _synthesize(args)
         if args.command == "bench":
             from .bench import run   # imported here: the other commands need none of it
 
