@@ -159,3 +159,32 @@ def test_the_trains_assembly_condition_agrees_with_trying_every_planet_turn():
         assert whole == _assembles(kind, teeth, k), (kind, z, k, number)
         seen.add(whole)
     assert seen == {True, False}
+
+
+def test_a_synthesis_scene_draws_the_best_and_lists_the_candidates(tmp_path):
+    import plans
+
+    scene = tmp_path / "s.toml"
+    scene.write_text('[synthesis]\nratio = 25.0\ntype = "B"\nplanets = 3\nmodule = 2.0\n', encoding="utf-8")
+    sheets = plans.render(scene)
+    data = sheets.report
+    listed = data["synthesis"]["candidates"]
+    best = synthesize(25.0, "B", 3, module=2.0)
+    assert [c["teeth"] for c in listed] == [c.teeth for c in best]
+    assert data["gears"]["geometry"]["pitch_radius_mm"]["a"] == best[0].teeth["a"] * 2.0 / 2
+    assert "s-gears.svg" in sheets.files
+
+
+@pytest.mark.parametrize("body, words", [
+    ('ratio = 60.0\ntype = "A"\nplanets = 3\n', "cannot reach"),
+    ('ratio = 6.0\ntype = "Q"\nplanets = 3\n', "synthesis.type"),
+    ('ratio = 6.0\ntype = "A"\n', "missing planets"),
+    ('ratio = 0.5\ntype = "A"\nplanets = 3\n', "beyond ±1"),
+    ('ratio = 6.0\ntype = "A"\nplanets = 3\nspeed = 1\n', "unknown key 'speed'")])
+def test_bad_synthesis_sections_are_one_line(body, words, tmp_path):
+    scene = tmp_path / "s.toml"
+    scene.write_text("[synthesis]\n" + body, encoding="utf-8")
+    r = subprocess.run([sys.executable, "-m", "plans", "render", str(scene), "-o", str(tmp_path / "o")],
+                       capture_output=True, text=True)
+    assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1 and words in r.stderr, r.stderr
+    assert not (tmp_path / "o").exists()

@@ -252,3 +252,17 @@ def test_undercut_is_a_warning(tmp_path):
     text = BASE.replace("teeth = 18", "teeth = 12").replace("teeth = 27", "teeth = 30")
     sheets = plans.render(_bad_scene(tmp_path, text))
     assert any("undercut" in w and "'a'" in w for w in sheets.warnings)
+
+
+def test_committed_gear_gallery_is_what_the_gear_examples_render(tmp_path):
+    """output/ holds the gear examples' files byte for byte (a checkout without output/ skips)."""
+    gallery = EXAMPLES.parent.parent / "output"
+    if not gallery.is_dir():
+        pytest.skip("no output/ in this checkout")
+    names = []
+    for scene in sorted(EXAMPLES.glob("*.toml")):
+        sheets = plans.render(scene)
+        for name, text in sheets.files.items():
+            names.append(name)
+            assert (gallery / name).read_text(encoding="utf-8") == text, f"output/{name} is out of date"
+    assert names

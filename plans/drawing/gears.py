@@ -29,6 +29,8 @@ TICK_MM = 2.0
 RIM_MM = 5.0
 #: Where a turning ring gear's disc runs down to its shaft, mm beyond the ring's plane.
 DISC_MM = 16.0
+#: Radius of a turning ring gear's hollow shaft in the side view, mm.
+HUB_MM = 3.0
 #: The speed table's column widths and row height, mm.
 TABLE_COLUMNS_MM = (16.0, 12.0, 26.0, 26.0)
 ROW_MM = 6.0
@@ -160,9 +162,12 @@ def _side_view(dwg, canvas: Canvas, sheet: GearSheet, ident: str, style: Style, 
                     canvas.line(g, (w.x, pitch), (w.x, rim), width=thick, stroke_width=sw, id=f"{wid}-{side}")
                     canvas.line(g, (w.x - TICK_MM, pitch), (w.x + TICK_MM, pitch), width=thick, stroke_width=sw,
                                 id=f"{wid}-t{side}")
-                    if not w.fixed:                # the ring's disc to its shaft
-                        canvas.polyline(g, [(w.x, rim), (w.x + DISC_MM, rim), (w.x + DISC_MM, 0.0)], width=thick,
-                                        stroke_width=sw, id=f"{wid}-d{side}")
+                    if not w.fixed:                # the ring's disc down to its hollow shaft, outboard
+                        out = DISC_MM if w.x >= max(v.x for v in sheet.wheels) else -DISC_MM
+                        hub = HUB_MM if side == 0 else -HUB_MM
+                        canvas.polyline(g, [(w.x, rim), (w.x + out, rim), (w.x + out, hub),
+                                            (w.x + out + 0.6 * out, hub)], width=thick, stroke_width=sw,
+                                        id=f"{wid}-d{side}")
                     if w.fixed:
                         a, b = (w.x - 4.0, rim), (w.x + 4.0, rim)
                         canvas.line(g, a, b, width=style.vector, stroke_width=fmt(style.vector, 3),

@@ -9,8 +9,12 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Any
 
+from ..errors import SceneError
+from ..scene import Scene
+from ..scene.gears import Synthesis
 from . import GearAnalysis
 from .speeds import tabular
+from .synthesis import Candidate, synthesize
 
 
 def _frac(x: Fraction) -> str:
@@ -63,3 +67,23 @@ def gears_report(analysis: GearAnalysis) -> dict[str, Any]:
         "pitch_radius_mm": g.radius, "arm_mm": g.arm, "unchecked": list(g.unchecked)}
     out["warnings"] = list(analysis.warnings)
     return out
+
+
+def synthesize_scene(scene: Scene) -> tuple[Candidate, ...]:
+    """The candidates of the scene's ``[synthesis]`` (best first); none is refused in one line."""
+    s = scene.synthesis
+    assert s is not None
+    found = synthesize(s.ratio, s.kind, s.planets, tolerance=s.tolerance, module=s.module)
+    if not found:
+        raise SceneError(f"type {s.kind} cannot reach i = {s.ratio:g} with {s.planets} planets within "
+                         f"±{s.tolerance:g} (external wheels 17 … 100 teeth, rings up to 250); try another type",
+                         key="synthesis.type")
+    return found
+
+
+def synthesis_report(s: Synthesis, found: tuple[Candidate, ...]) -> dict[str, Any]:
+    """The asked ratio and each verified candidate (teeth, exact ratio, relative error, size)."""
+    return {"ratio": s.ratio, "type": s.kind, "planets": s.planets, "tolerance": s.tolerance, "module": s.module,
+            "candidates": [{"teeth": c.teeth, "ratio": {"exact": str(c.ratio), "value": float(c.ratio)},
+                            "error": (float(c.ratio) - s.ratio) / s.ratio, "largest_teeth": c.size}
+                           for c in found]}

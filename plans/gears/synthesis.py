@@ -34,6 +34,8 @@ from . import analyse_train
 
 __all__ = ["Candidate", "synthesize", "TYPES", "MIN_TEETH", "MAX_TEETH", "RING_MARGIN"]
 
+#: The input speed of a found train (its ratio does not depend on it), rpm.
+INPUT_RPM = 1000.0
 #: The schemes.
 TYPES = ("A", "B", "C", "D")
 #: Teeth of an external wheel: at least MIN_TEETH (no undercut), at most MAX_TEETH.
@@ -129,13 +131,13 @@ def _train(kind: str, z: tuple[int, ...], k: int, module: float) -> GearTrain:
         a, g, b = z
         wheels = (Wheel("a", a, module), Wheel("g", g, module, on="H"), Wheel("b", b, module, internal=True))
         return GearTrain(wheels=wheels, carriers=("H",), meshes=(("a", "g"), ("g", "b")), fixed=("b",), planets=k,
-                         inputs=(("a", 1.0),))
+                         inputs=(("a", INPUT_RPM),))
     a, g, g2, b = z
     ring1, ring2 = kind == "C", kind in ("B", "C")
     names = ("b1", "g", "g2", "b2") if kind == "C" else ("a", "g", "g2", "b")
     wheels = (Wheel(names[0], a, module, internal=ring1), Wheel("g", g, module, on="H"),
               Wheel("g2", g2, module, on="H", shaft="g"), Wheel(names[3], b, module, internal=ring2))
-    inputs = (("a", 1.0),) if kind == "B" else (("H", 1.0),)
+    inputs = (("a", INPUT_RPM),) if kind == "B" else (("H", INPUT_RPM),)
     return GearTrain(wheels=wheels, carriers=("H",), meshes=((names[0], "g"), ("g2", names[3])), fixed=(names[3],),
                      planets=k, inputs=inputs)
 

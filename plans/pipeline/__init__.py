@@ -13,13 +13,14 @@ them (SVG, PNG, PDF and the JSON report), all or nothing."""
 
 from __future__ import annotations
 
+import dataclasses
 import os
 from pathlib import Path
 
 from ..drawing import Style
 from ..errors import PlansError
 from ..gears import GearAnalysis, analyse_train, with_train
-from ..gears.report import gears_report
+from ..gears.report import gears_report, synthesis_report, synthesize_scene
 from ..scene import Scene, read_scene
 from .json_report import report, report_text
 from .motion_checks import check_triads, motion_warnings
@@ -56,13 +57,20 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
     None) locates error messages. Nothing here reads or writes a file."""
     path = where or f"scene {scene.title!r}"     # the prefix of the messages below
     train: GearAnalysis | None = None
+    found = None
+    if scene.synthesis is not None:
+        try:
+            found = synthesize_scene(scene)
+        except PlansError as exc:
+            raise exc.in_file(where) if where and hasattr(exc, "in_file") else exc
+        scene = dataclasses.replace(scene, gears=found[0].train)
     if scene.gears is not None:
         try:
             train = analyse_train(scene.gears)
         except PlansError as exc:
             raise exc.in_file(where) if where and hasattr(exc, "in_file") else exc
         if scene.train_only:
-            return _render_train(scene, train, stem=stem, style=style)
+            return _render_train(scene, train, stem=stem, style=style, found=found)
         scene = with_train(scene, train)
     try:
         motion, cycle = solve_motion(scene)
@@ -99,10 +107,14 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
     return Rendered(stem, files, motion, scales, tuple(warnings), forces, train)
 
 
-def _render_train(scene: Scene, train: GearAnalysis, *, stem: str, style: Style) -> Rendered:
-    """The files of a gear train alone: its sheet (when drawn) and the report."""
+def _render_train(scene: Scene, train: GearAnalysis, *, stem: str, style: Style, found=None) -> Rendered:
+    """The files of a gear train alone: its sheet (when drawn) and the report (with the candidates
+    of ``[synthesis]``, the first drawn)."""
     files = gear_sheets(scene, train, stem, style)
-    files[f"{stem}.json"] = report_text({"title": scene.title, "gears": gears_report(train)})
+    data = {"title": scene.title, "gears": gears_report(train)}
+    if found is not None:
+        data["synthesis"] = synthesis_report(scene.synthesis, found)
+    files[f"{stem}.json"] = report_text(data)
     where = scene.file or f"scene {scene.title!r}"
     return Rendered(stem, files, None, None, tuple(f"{where}: {w}" for w in train.warnings), None, train)
 

@@ -17,11 +17,11 @@ from .values import (CYCLE_SHEETS, CYCLE_STARTS, DEFAULT_DRAW, DRAWABLE, FORCE_S
                      MAX_SPEED, MAX_TITLE_CHARS, MAX_VELOCITY_PLANS, MAX_WALK_STEPS, MIN_CYCLE_POSITIONS, MIN_RATE,
                      MIN_SIZE_M, STEP_DEG, AppliedForce, AppliedMoment, Balance, Cycle, Drive, DriveKind, Mass,
                      Scene, Slider)
-from .gears import GearTrain, Wheel
+from .gears import GearTrain, Synthesis, Wheel
 from .document import parse_scene
 from .file import read_scene
 
-__all__ = ["Scene", "GearTrain", "Wheel", "Slider", "Drive", "DriveKind", "Cycle", "Mass", "AppliedForce", "AppliedMoment", "Balance",
+__all__ = ["Scene", "GearTrain", "Wheel", "Synthesis", "Slider", "Drive", "DriveKind", "Cycle", "Mass", "AppliedForce", "AppliedMoment", "Balance",
            "read_scene", "parse_scene", "FRAME", "DRAWABLE", "DEFAULT_DRAW", "FORCE_SHEETS", "CYCLE_SHEETS",
            "CYCLE_STARTS", "MIN_CYCLE_POSITIONS", "MAX_VELOCITY_PLANS", "STEP_DEG", "LINEAR_STEPS_PER_SIZE",
            "MAX_COORD_M", "MIN_SIZE_M", "MAX_ANGLE_DEG", "MAX_WALK_STEPS", "MAX_POSITIONS", "MAX_OMEGA",

@@ -12,7 +12,7 @@ from typing import Any, Mapping
 from ..errors import SceneError
 from .checks import SHOW, subtable, text
 from .drive import read_drive
-from .gears import read_gears
+from .gears import read_gears, read_synthesis
 from .loads import read_balance, read_forces, read_gravity, read_masses, read_moments
 from .options import read_cycle, read_draw
 from .scales import read_scales
@@ -21,9 +21,9 @@ from .gears import GearTrain
 from .values import MAX_TITLE_CHARS, Scene
 
 _TOP_KEYS = {"title", "description", "points", "links", "sliders", "drive", "lengths", "plans", "scales",
-             "masses", "forces", "moments", "gravity", "balance", "gears"}
+             "masses", "forces", "moments", "gravity", "balance", "gears", "synthesis"}
 #: The keys of a scene that is a gear train alone (no [points], [links], [drive]).
-_TRAIN_KEYS = {"title", "description", "plans", "scales", "gears"}
+_TRAIN_KEYS = {"title", "description", "plans", "scales", "gears", "synthesis"}
 
 
 def parse_scene(data: Mapping[str, Any], *, file: str | None = None) -> Scene:
@@ -49,6 +49,11 @@ def _parse(data: Mapping[str, Any], file: str | None) -> Scene:
         raise SceneError(f"title has {len(title)} characters; it is one line at the top of every sheet, keep it "
                          f"within {MAX_TITLE_CHARS} (put the rest in description)", key="title")
     description = text(data.get("description", ""), "description", line=False)
+    if "synthesis" in data:
+        if "gears" in data or {"points", "links", "drive"} & set(data):
+            raise SceneError("[synthesis] finds a gear train of its own: a scene with it has no [gears] and no "
+                             "linkage (put the found train into a scene of its own)", key="synthesis")
+        return _train_only(data, title, description, None, file)
     gears = read_gears(data["gears"]) if "gears" in data else None
     if gears is not None and not {"points", "links", "drive"} & set(data):
         return _train_only(data, title, description, gears, file)
@@ -88,14 +93,15 @@ def _parse(data: Mapping[str, Any], file: str | None) -> Scene:
                  gears=gears)
 
 
-def _train_only(data: Mapping[str, Any], title: str, description: str, gears: GearTrain,
+def _train_only(data: Mapping[str, Any], title: str, description: str, gears: GearTrain | None,
                 file: str | None) -> Scene:
-    """A scene that is a gear train alone: [gears] with title, description, [plans] draw, [scales]."""
+    """A scene that is a gear train alone: [gears] (or [synthesis], which finds it) with title,
+    description, [plans] draw, [scales]."""
     extra = sorted(str(k) for k in set(data) - _TRAIN_KEYS)
     if extra:
         raise SceneError(f"[{extra[0]}] belongs to a linkage, but this scene has no [points], [links], [drive]; "
                          f"a gear train alone has {', '.join(sorted(_TRAIN_KEYS))}", key=extra[0])
-    if gears.output is not None:
+    if gears is not None and gears.output is not None:
         raise SceneError("output names the wheel on a linkage's crank, but the scene has no linkage; remove it or "
                          "add the linkage ([points], [links], [drive])", key="gears.output")
     plans_table = subtable(data, "plans")
@@ -106,5 +112,7 @@ def _train_only(data: Mapping[str, Any], title: str, description: str, gears: Ge
     if draw not in (["gears"], []):
         raise SceneError(f"a gear train draws [\"gears\"] (its sheet) or [] (the report alone), got "
                          f"{SHOW.repr(draw)}", key="plans.draw")
+    synthesis = read_synthesis(data["synthesis"]) if "synthesis" in data else None
     return Scene(title=title or "Gear train", points={}, links={}, sliders=(), drive=None, draw=tuple(draw),
-                 scales=read_scales(subtable(data, "scales")), description=description, file=file, gears=gears)
+                 scales=read_scales(subtable(data, "scales")), description=description, file=file, gears=gears,
+                 synthesis=synthesis)

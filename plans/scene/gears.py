@@ -194,3 +194,48 @@ def _inputs(value: Any, known: set[str]) -> tuple[tuple[str, float], ...]:
                              key=f"gears.input.{name}")
         out.append((name, number(rpm, f"gears.input.{name}", bound=MAX_RPM, why=" rpm")))
     return tuple(out)
+
+
+@dataclass(frozen=True)
+class Synthesis:
+    """``[synthesis]``: find the teeth of a 2K-H planetary train (``kind`` "A" … "D") for ``ratio``
+    (input → output) within ``tolerance`` (relative) with ``planets`` equally spaced planets, every
+    wheel of ``module`` mm; the best candidate is drawn."""
+
+    ratio: float
+    kind: str
+    planets: int
+    tolerance: float = 0.01
+    module: float = 1.0
+
+
+_SYNTHESIS_KEYS = {"ratio", "type", "planets", "tolerance", "module"}
+
+
+def read_synthesis(table: Any) -> Synthesis:
+    """Validate ``[synthesis]`` (the bounds of each value are checked by the synthesis itself)."""
+    if not isinstance(table, Mapping):
+        raise SceneError("[synthesis] must be a table", key="synthesis")
+    unknown = sorted(str(k) for k in set(table) - _SYNTHESIS_KEYS)
+    if unknown:
+        raise SceneError(f"unknown key {unknown[0]!r}; [synthesis] has {', '.join(sorted(_SYNTHESIS_KEYS))}",
+                         key=f"synthesis.{unknown[0]}")
+    for k in ("ratio", "type", "planets"):
+        if k not in table:
+            raise SceneError(f"missing {k}: [synthesis] needs ratio, type (A, B, C or D) and planets",
+                             key=f"synthesis.{k}")
+    kind = table["type"]
+    if not isinstance(kind, str) or kind.strip().upper() not in ("A", "B", "C", "D"):
+        raise SceneError(f"type is one of \"A\", \"B\", \"C\", \"D\", got {SHOW.repr(kind)}", key="synthesis.type")
+    planets = table["planets"]
+    if isinstance(planets, bool) or not isinstance(planets, int) or not 2 <= planets <= 12:
+        raise SceneError(f"planets is a whole number 2 … 12, got {SHOW.repr(planets)}", key="synthesis.planets")
+    ratio = number(table["ratio"], "synthesis.ratio", bound=1e6)
+    if abs(ratio) <= 1.0:
+        raise SceneError(f"a reducer's ratio is beyond ±1, got {ratio:g}", key="synthesis.ratio")
+    tolerance = number(table.get("tolerance", 0.01), "synthesis.tolerance", positive=True, bound=0.2,
+                       why=" (0.01 = 1 %)")
+    module = number(table.get("module", 1.0), "synthesis.module", positive=True, bound=100.0, why=" mm")
+    if module < 0.05:
+        raise SceneError(f"module {module:g} mm is below 0.05 mm", key="synthesis.module")
+    return Synthesis(ratio=ratio, kind=kind.strip().upper(), planets=planets, tolerance=tolerance, module=module)

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 from enum import StrEnum
 from typing import Mapping
 
-from .gears import GearTrain
+from .gears import GearTrain, Synthesis
 
 #: The frame's name in [links] (a link name, a string).
 FRAME = "0"
@@ -235,6 +235,7 @@ class Scene:
     gravity: float | None = None  # g (m/s², acting −y) when given, else no gravity
     balance: Balance | None = None  # the balancing element when forces are computed
     gears: GearTrain | None = None  # [gears]: a train alone (no points, links, drive=None) or driving the crank
+    synthesis: Synthesis | None = None  # [synthesis]: a planetary train to find (then gears is None)
 
     @property
     def train_only(self) -> bool:
