@@ -15,7 +15,7 @@ from .drive import read_drive
 from .loads import read_balance, read_forces, read_gravity, read_masses, read_moments
 from .options import read_cycle, read_draw
 from .scales import read_scales
-from .sketch import read_lengths, read_links, read_points, read_sliders
+from .sketch import check_dimensions, read_lengths, read_links, read_points, read_sliders
 from .values import MAX_TITLE_CHARS, Scene
 
 _TOP_KEYS = {"title", "description", "points", "links", "sliders", "drive", "lengths", "plans", "scales",
@@ -53,6 +53,7 @@ def _parse(data: Mapping[str, Any], file: str | None) -> Scene:
     drive = read_drive({k: v for k, v in drive_table.items() if k not in cycle_keys}, links, sliders, points,
                        cycle=cycle_keys)
     lengths = read_lengths(subtable(data, "lengths"), points, links)
+    check_dimensions(points, links, sliders, lengths)
     plans_table = subtable(data, "plans")
     draw, senses = read_draw({k: v for k, v in plans_table.items() if k not in ("output", "trace", "at")})
     cycle = read_cycle(cycle_keys, drive, plans_table, draw, points, links)
