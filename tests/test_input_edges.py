@@ -20,6 +20,7 @@ from pathlib import Path
 
 import pytest
 
+import plans
 import plans.handout.draws
 from plans.cli import main
 from plans.scene import MAX_FILE_BYTES, MIN_LENGTH_RATIO, parse_scene
@@ -194,6 +195,11 @@ def test_devices_pipes_and_directories_are_refused_by_every_reader(tmp_path, fif
                        "    print(e)\n    raise SystemExit(2)", cwd=tmp_path)
     assert code == 2 and "Traceback" not in err, err
     assert not Path(out).exists()
+
+
+def test_a_path_with_a_nul_character_is_a_scene_error():
+    with pytest.raises(plans.SceneError, match=r"^a\\x00b: no such scene file: the path holds a NUL character"):
+        plans.render("a\x00b")
 
 
 def test_a_file_over_the_bound_is_refused_before_it_is_read(tmp_path, capsys):

@@ -37,6 +37,8 @@ def read_bytes(path: str | Path, *, what: str = "scene file", limit: int = MAX_F
         fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_BINARY", 0))
     except FileNotFoundError:
         raise SceneError(f"no such {what}; check the path", file=file) from None
+    except ValueError:          # a NUL character, which no path can hold
+        raise SceneError(f"no such {what}: the path holds a NUL character; check the path", file=file) from None
     except OSError as exc:
         raise SceneError(f"cannot read the file ({exc.__class__.__name__}); check the path and its permissions",
                          file=file) from None
