@@ -80,7 +80,8 @@ from .checking_read import (_SVG, _TRANSFORM, _Union, _decimals, _ends, _line_da
                             _point_name, _transformed)
 from .checking_report import Check, Closure, Measurement, SvgReport
 from .drawing.style import Style
-from .errors import DrawingError
+from .errors import DrawingError, SceneError
+from .scene import read_bytes
 
 __all__ = ["Measurement", "Closure", "Check", "SvgReport", "inspect_svg", "check_svg", "check_plan", "GEOMETRY_TOL_MM",
            "WRITER_PRECISION", "similarity_ratio"]
@@ -102,6 +103,9 @@ SCHEME = "scheme"
 BOUND = "bound"
 #: Kind of a plan sheet its writer drew with no vector (``data-vectors="0"``): the pole alone.
 EMPTY = "empty"
+#: Largest SVG file checked, bytes (16 MB): plans' largest sheet is about 100 kB; a larger file,
+#: or one that is not a regular file, is refused before it is read (plans.scene.read_bytes).
+MAX_SVG_BYTES = 16_000_000
 #: Root ids written for plan sheets (a sheet claiming to be a plan must carry tagged vectors).
 _PLAN_IDS = ("velocity", "acceleration", "koshel", "centres")
 
@@ -113,8 +117,10 @@ def inspect_svg(path: str | Path, precision: float | None = WRITER_PRECISION) ->
     :class:`DrawingError` only when the file cannot be read as XML."""
     path = Path(path)
     try:
-        root = ET.parse(path).getroot()
-    except (OSError, ET.ParseError) as exc:
+        root = ET.fromstring(read_bytes(path, what="sheet (an SVG file)", limit=MAX_SVG_BYTES))
+    except SceneError as exc:       # missing, not a regular file (a pipe, /dev/zero), too large
+        raise DrawingError(str(exc)) from None
+    except ET.ParseError as exc:
         raise DrawingError(f"{path}: cannot read the SVG ({exc})") from None
     parent = {c: p for p in root.iter() for c in p}
     tagged = [e for e in root.iter() if e.get("data-quantity") is not None]

@@ -61,7 +61,7 @@ class Diagrams:
     """The three graphs over one revolution: ``mu_t`` (s/mm), ``mu_phi`` (rad/mm), ``length``
     of the time axis (mm, one period), ``period`` T (s), ``omega`` ω1 (rad/s), ``start`` φ of
     position 0 (deg), ``step`` Δφ (deg), ``positions`` N, the output ``link`` and ``kind``
-    ("slider" or "rocker"), and ``time_ticks`` (t s, x mm)."""
+    ("slider", or "rocker" or "crank": a pivoted link, its angle), and ``time_ticks`` (t s, x mm)."""
 
     mu_t: float
     mu_phi: float
@@ -113,8 +113,8 @@ def diagrams(*, start: float, step: float, positions: int, every: int, omega: fl
     v_chord = np.diff(s_pos) / dt      # at the middles of the N intervals
     a_chord = (v_chord - np.roll(v_chord, 1)) / dt
     a_chord = np.append(a_chord, a_chord[0])   # position N is position 0 a turn later
-    names = {"slider": (("s", "m"), ("v", "m/s"), ("a", "m/s²")),
-             "rocker": (("ψ", "rad"), ("ω", "rad/s"), ("ε", "rad/s²"))}[kind]
+    names = (("s", "m"), ("v", "m/s"), ("a", "m/s²")) if kind == "slider" else \
+        (("ψ", "rad"), ("ω", "rad/s"), ("ε", "rad/s²"))      # a rocker or a crank: its angle
     sub = point if kind == "slider" else link
     graphs = []
     top = 0.0

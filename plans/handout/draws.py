@@ -14,10 +14,10 @@ from typing import Callable
 
 import numpy as np
 
-from ..errors import PlansError, SceneError
+from ..errors import SceneError
 from ..pipeline import render
 from ..scene import parse_scene
-from .solving import group_margins, short_of, solve_variant
+from .solving import VariantError, group_margins, short_of, solve_variant
 from .variants import (ANGLE_STEP_DEG, LENGTH_SPREAD, MARGIN_SIN, MAX_TRIES, SPEED_RANGE, SPEED_SERIES, Drawn,
                        Handout, Variant, read_base)
 
@@ -55,6 +55,31 @@ def _draw(h: Handout, rng: np.random.Generator, number: int) -> Variant:
     return Variant(number=number, lengths=lengths, values=values, speed=speed)
 
 
+#: What each cause of a refused draw says (see :func:`_none_works`).
+_CAUSES = {"build": "had lengths that form no link", "assembly": "did not assemble, or were singular, at the "
+           "drawn position", "margin": "came closer to a singular position than the margin"}
+
+
+def _none_works(h: Handout, causes: dict[str, list]) -> SceneError:
+    """The error when MAX_TRIES draws give no variant: how many draws each cause refused, the
+    most frequent first with an example, and what to change for it."""
+    ranked = sorted(causes.items(), key=lambda item: -item[1][0])
+    top, (_, example) = ranked[0]
+    counts = ", ".join(f"{k} {_CAUSES.get(c, f'set {c[6:]}, which the base scene refuses')}" for c, (k, _) in ranked)
+    drive = h.base_data.get("drive", {})
+    if top == "value:angle" and drive.get("start") == "extreme":
+        return SceneError(f"none of {MAX_TRIES} draws gives a variant: {counts}; --random draws each variant's "
+                          'crank angle over the turn, but start = "extreme" finds the first position itself, so every '
+                          'drawn angle is refused: give the base [drive] angle (the first position) instead of '
+                          'start = "extreme", or write a variants file that leaves angle out', file=str(h.base),
+                          key="drive.start")
+    fix = f"the base's lengths ±{LENGTH_SPREAD:.0%} give too few mechanisms that work: check the base scene" \
+        if top in _CAUSES else f"the draws set {top[6:]}, which the base scene refuses: check the base scene's " \
+        "[drive] and [lengths]"
+    return SceneError(f"none of {MAX_TRIES} draws gives a variant: {counts} (e.g. {example}); {fix}",
+                      file=str(h.base), key="--random")
+
+
 def _is_coupler(h: Handout) -> bool:
     """Whether the angle drive turns a link with no pivot on the frame (its angle cannot go round)."""
     links = h.base_data["links"]
@@ -75,25 +100,24 @@ def random_variants(path: str | Path, count: int, seed: int, *, margin: float = 
     drawn: list[Drawn] = []
     redraws = 0
     for number in range(1, count + 1):
-        why = ""
+        causes: dict[str, list] = {}        # why draws were refused: cause → [count, the first message]
         for _ in range(MAX_TRIES):
             v = _draw(h, rng, number)
             try:
                 d = solve_variant(h, v)
-            except PlansError as exc:
-                why = str(exc)
+            except VariantError as exc:
+                why = f"value:{exc.sub}" if exc.cause == "value" else exc.cause
+                causes.setdefault(why, [0, exc.message])[0] += 1
                 redraws += 1
                 continue
-            why = short_of(d.sheets, margins)
-            if not why:
+            short = short_of(d.sheets, margins)
+            if not short:
                 drawn.append(d)
                 break
-            why = f"{d.name}: {why}"
+            causes.setdefault("margin", [0, f"{d.name}: {short}"])[0] += 1
             redraws += 1
         else:
-            raise SceneError(f"no variant among {MAX_TRIES} draws assembles keeping the margin from singular "
-                             f"positions (the last: {why}); the base's lengths ±{LENGTH_SPREAD:.0%} give too few "
-                             "mechanisms that work: check the base scene", file=str(h.base), key="--random")
+            raise _none_works(h, causes)
         if progress:
             progress(number, drawn[-1].name)
     variants = tuple(d.variant for d in drawn)

@@ -18,7 +18,20 @@ from ..pipeline import Sheets, render
 from ..scene import Scene, parse_scene
 from .variants import MARGIN_SIN, SINE_GROUPS, Drawn, Handout, Variant
 
-__all__ = ["variant_data", "variant_scene", "solve_variant", "worst_sine", "group_margins", "short_of"]
+__all__ = ["VariantError", "variant_data", "variant_scene", "solve_variant", "worst_sine", "group_margins",
+           "short_of"]
+
+
+class VariantError(SceneError):
+    """A variant that cannot be made, and why: ``cause`` "value" (the scene refuses a value the
+    variant sets, at its key ``sub``: ``angle``, ``lengths.AB``), "build" (its lengths form no
+    link) or "assembly" (it does not assemble, or is singular, at an asked position)."""
+
+    def __init__(self, message: str, *, file: str | None = None, key: str | None = None, cause: str = "value",
+                 sub: str = ""):
+        super().__init__(message, file=file, key=key)
+        self.cause, self.sub = cause, sub
+
 
 def variant_data(h: Handout, v: Variant) -> dict:
     """The base scene's TOML data with the variant's lengths and drive values."""
@@ -47,7 +60,8 @@ def variant_scene(h: Handout, v: Variant) -> Scene:
         for table, alias in (("drive.", ""), ("lengths.", "lengths.")):
             if sub.startswith(table):
                 sub = alias + sub[len(table):]
-        raise SceneError(f"{exc.message} ({h.name(v)})", file=file, key=f"{key}.{sub}" if sub else key) from None
+        raise VariantError(f"{exc.message} ({h.name(v)})", file=file, key=f"{key}.{sub}" if sub else key,
+                           sub=sub) from None
 
 
 def solve_variant(h: Handout, v: Variant) -> Drawn:
@@ -60,10 +74,11 @@ def solve_variant(h: Handout, v: Variant) -> Drawn:
         sheets = render(scene, stem=name)
     except SceneError as exc:      # a link's lengths that cannot form its shape
         where = f" (link {exc.key[len('links.'):]})" if exc.key and exc.key.startswith("links.") else ""
-        raise SceneError(f"{name} cannot be built: {exc.message}{where}", file=file, key=key) from None
+        raise VariantError(f"{name} cannot be built: {exc.message}{where}", file=file, key=key,
+                           cause="build") from None
     except PlansError as exc:      # does not assemble, or singular, at an asked position
         why = str(exc).removeprefix(f"{h.base}, ").removeprefix(f"{h.base}: ")
-        raise SceneError(f"{name} cannot be drawn: {why}", file=file, key=key) from None
+        raise VariantError(f"{name} cannot be drawn: {why}", file=file, key=key, cause="assembly") from None
     return Drawn(v, name, scene, sheets)
 
 

@@ -9,14 +9,14 @@ modules of :mod:`plans.handout`, the drawing or the command line.
 from __future__ import annotations
 
 import math
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping
 
 from ..errors import SceneError
 from ..pipeline import Sheets
-from ..scene import Scene, parse_scene
+from ..scene import Scene, as_float, parse_scene, parse_toml, read_text
+from ..scene.checks import SHOW
 
 __all__ = ["MARGIN_SIN", "SINE_GROUPS", "LENGTH_SPREAD", "ANGLE_STEP_DEG", "SPEED_SERIES", "SPEED_RANGE",
            "MAX_VARIANTS", "MAX_TRIES", "Variant", "Handout", "Drawn", "read_base", "read_variants", "margin_text"]
@@ -98,25 +98,22 @@ class Drawn:
     sheets: Sheets
 
 
-def _load(path: Path, what: str) -> tuple[str, dict]:
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise SceneError(f"no such {what}; check the path", file=str(path)) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise SceneError(f"cannot read the file ({exc.__class__.__name__}); it must be UTF-8 TOML",
-                         file=str(path)) from None
-    try:
-        return text, tomllib.loads(text)
-    except (tomllib.TOMLDecodeError, ValueError, RecursionError) as exc:
-        raise SceneError(f"malformed TOML: {exc}; fix the syntax there", file=str(path)) from None
-
-
-def read_base(path: str | Path) -> Handout:
-    """A base scene for :func:`random_variants`: read and validated (no variants yet)."""
+def read_base(path: str | Path, *, cited: tuple[str, str] | None = None) -> Handout:
+    """A base scene for :func:`random_variants` (``--random``), or the ``base`` of a variants file
+    (``cited``: that file and its key, which errors about the base as a file then name): read
+    through the scene's bounded reader and validated (no variants yet)."""
     path = Path(path)
-    text, data = _load(path, "scene file")
+    try:
+        text = read_text(path)
+    except SceneError as exc:
+        if cited is None:
+            raise
+        raise SceneError(f"base scene {str(path)!r}: {exc.message}", file=cited[0], key=cited[1]) from None
+    data = parse_toml(text, str(path))
     if "base" in data or "variant" in data:
+        if cited is not None:
+            raise SceneError(f"names {str(path)!r}, another variants file, not a scene: give the scene it is based on "
+                             f"({data.get('base', '?')})", file=cited[0], key=cited[1])
         raise SceneError("is a variants file, not a scene; --random draws variants around a scene: give its base "
                          f"scene ({data.get('base', '?')}) instead", file=str(path), key="--random")
     scene = parse_scene(data, file=str(path))
@@ -126,8 +123,8 @@ def read_base(path: str | Path) -> Handout:
 def read_variants(path: str | Path) -> Handout:
     """Read and validate a variants file; errors name the file, the key and the fix."""
     path = Path(path)
-    text, data = _load(path, "variants file")
     f = str(path)
+    data = parse_toml(read_text(path, what="variants file"), f)
     if "base" not in data:
         if "points" in data and "drive" in data:
             raise SceneError("is a scene, not a variants file: add --random N to draw N variants around it, or "
@@ -141,10 +138,13 @@ def read_variants(path: str | Path) -> Handout:
     if not isinstance(data["base"], str) or not data["base"].strip():
         raise SceneError(f"base is the path of the base scene (a string), got {data['base']!r}", file=f, key="base")
     base_path = path.parent / data["base"]
-    if not base_path.is_file():
+    if not base_path.exists():
         raise SceneError(f"base scene {data['base']!r} not found (looked for {base_path}; the path is relative to "
                          "the variants file); fix the path", file=f, key="base")
-    base = read_base(base_path)
+    if base_path.resolve() == path.resolve():
+        raise SceneError(f"base = {data['base']!r} names this variants file itself; base is the scene the variants "
+                         "change: name that scene file (a path relative to this file)", file=f, key="base")
+    base = read_base(base_path, cited=(f, "base"))
     title = data.get("title", base.title)
     if not isinstance(title, str) or not title.isprintable():
         raise SceneError("title is one line of text (a string)", file=f, key="title")
@@ -161,10 +161,11 @@ def read_variants(path: str | Path) -> Handout:
 
 def _number(value: Any, key: str, file: str, *, positive: bool = False, unit: str = "") -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise SceneError(f"must be a number{' of ' + unit if unit else ''}, got {value!r}", file=file, key=key)
-    x = float(value)
+        raise SceneError(f"must be a number{' of ' + unit if unit else ''}, got {SHOW.repr(value)}", file=file,
+                         key=key)
+    x = as_float(value)          # a TOML integer of hundreds of digits is inf here, not an OverflowError
     if not math.isfinite(x):
-        raise SceneError(f"{value!r} is not a finite number; give a real value", file=file, key=key)
+        raise SceneError(f"{SHOW.repr(value)} is not a finite number; give a real value", file=file, key=key)
     if positive and x <= 0.0:
         raise SceneError(f"must be positive, got {x:g}; give the length in metres, e.g. 0.1", file=file, key=key)
     return x

@@ -2,8 +2,10 @@
 its exact extreme positions.
 
 The output link is a slider on a frame guide (its displacement s along the guide's direction
-u, m; v = ds/dt, a = d²s/dt²) or a link pivoted on the frame, a rocker (its angle ψ, rad, of
-the line first point → second point; ω = dψ/dt, ε = dω/dt). Its extreme positions are where
+u, m; v = ds/dt, a = d²s/dt²) or a link pivoted on the frame (its angle ψ, rad, of the line
+first point → second point; ω = dψ/dt, ε = dω/dt): a rocker when it swings, a crank when it
+turns fully over the crank's revolution (the output of a drag-link four-bar, whose frame is its
+shortest link), which has no extreme position. Its extreme positions are where
 its velocity changes sign: bracketed on a dense grid of crank angles, then refined by Newton's
 method on ds/dφ (a slider) or dψ/dφ (a rocker), solved with ω1 = 1 rad/s, ε1 = 0 so that
 ds/dφ = v and d²s/dφ² = a, with bisection whenever a Newton step leaves its bracket.
@@ -36,10 +38,11 @@ EXTREME_STEPS = 80
 @dataclass(frozen=True)
 class Output:
     """The output link's motion at N positions. ``kind`` is "slider" (``s`` m along the guide's
-    direction from the guide's anchor, ``v`` m/s, ``a`` m/s²) or "rocker" (``s`` the angle ψ in
-    rad, continuous over the positions, ``v`` = ω rad/s, ``a`` = ε rad/s²); ``point`` is the
-    slider's pair point, or the rocker's point farthest from its pivot; ``v``, ``a`` are None
-    when not computed."""
+    direction from the guide's anchor, ``v`` m/s, ``a`` m/s²), or "rocker" or "crank" for a link
+    pivoted on the frame that swings or turns fully (``s`` the angle ψ in rad, continuous over
+    the positions, ``v`` = ω rad/s, ``a`` = ε rad/s²; :func:`output_motion` says "rocker",
+    :func:`solve_cycle` tells a crank from the whole revolution); ``point`` is the slider's pair
+    point, or the point farthest from the pivot; ``v``, ``a`` are None when not computed."""
 
     link: str
     kind: str
@@ -124,8 +127,9 @@ def solve_cycle(mech: Mechanism, structure: Structure, *, positions: int, start:
     extremes = _extremes(mech, structure, output, mech.drive.sketch_value if start is None else start)
     if start is None:
         if extremes is None:
-            raise SceneError(f"the output link {output} turns fully: it has no extreme position to start from; "
-                             "give the first position as angle instead of start = \"extreme\"", key="drive.start")
+            raise SceneError(f"the output link {output} turns fully (a crank, not a rocker): it has no extreme "
+                             "position to start from; give the first position as angle instead of "
+                             "start = \"extreme\"", key="drive.start")
         start = float(extremes[0])
     sense = -1.0 if mech.drive.speed < 0 else 1.0
     values, dense_values = _values(start, positions, every, sense)
@@ -135,9 +139,12 @@ def solve_cycle(mech: Mechanism, structure: Structure, *, positions: int, start:
     if extremes is not None:
         ext = analyse(mech, structure, np.asarray(extremes), order=max(order, 1))
         ext_out = output_motion(ext, output)
+    outputs = (output_motion(motion, output), output_motion(dense, output), ext_out)
+    full = outputs[1]
+    if full.kind == "rocker" and abs(float(full.s[-1] - full.s[0])) > math.pi:   # a turn: 2π, a swing: 0
+        outputs = tuple(None if o is None else replace(o, kind="crank") for o in outputs)
     return Cycle(start=start, step=sense * 360.0 / positions, every=every, motion=motion, dense=dense,
-                 output=output_motion(motion, output), dense_output=output_motion(dense, output),
-                 extremes=ext, extreme_output=ext_out)
+                 output=outputs[0], dense_output=outputs[1], extremes=ext, extreme_output=outputs[2])
 
 
 def _extremes(mech: Mechanism, structure: Structure, output: str, around: float) -> np.ndarray | None:

@@ -68,14 +68,21 @@ def quoted(value: Any) -> str:
     return f'"{value}"' if isinstance(value, (int, float)) and not isinstance(value, bool) else '"NAME"'
 
 
+def as_float(value: int | float) -> float:
+    """``value`` (a number read from TOML or JSON) as a float; an integer beyond the largest
+    double (TOML integers have any number of digits, up to 4300) is ±inf, not an OverflowError,
+    so that the caller's finiteness check refuses it in one line."""
+    try:
+        return float(value)
+    except OverflowError:
+        return math.inf if value > 0 else -math.inf
+
+
 def number(value: Any, key: str, *, positive: bool = False, bound: float | None = None, why: str = "") -> float:
     """A finite number; ``bound`` (SI) limits its magnitude, ``why`` says where the bound comes from."""
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise SceneError(f"expected a number, got {SHOW.repr(value)}", key=key)
-    try:
-        x = float(value)
-    except OverflowError:       # an integer beyond the largest double
-        x = math.inf if value > 0 else -math.inf
+    x = as_float(value)
     if not math.isfinite(x):
         raise SceneError(f"{SHOW.repr(value)} is not a finite number; give a real value", key=key)
     if positive and x <= 0.0:

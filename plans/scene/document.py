@@ -16,7 +16,7 @@ from .gears import read_gears, read_synthesis
 from .loads import read_balance, read_forces, read_gravity, read_masses, read_moments
 from .options import read_cycle, read_draw
 from .scales import read_scales
-from .sketch import read_lengths, read_links, read_points, read_sliders
+from .sketch import check_dimensions, read_lengths, read_links, read_points, read_sliders
 from .gears import GearTrain
 from .values import MAX_TITLE_CHARS, Scene
 
@@ -67,12 +67,16 @@ def _parse(data: Mapping[str, Any], file: str | None) -> Scene:
     cycle_keys = {k: drive_table[k] for k in ("positions", "start") if k in drive_table}
     drive_keys = {k: v for k, v in drive_table.items() if k not in cycle_keys}
     if gears is not None:
+        if {"displacement", "velocity", "acceleration"} & set(drive_keys):
+            raise SceneError("a gear train turns a crank, and this [drive] is linear; drive a link that turns "
+                             "(angle) or remove [gears] output", key="gears.output")
         if "omega" in drive_keys:
             raise SceneError(f"the crank's ω comes from the gear train ([gears] output = {gears.output!r}); remove "
                              "omega from [drive]", key="drive.omega")
         drive_keys["omega"] = 1.0      # a placeholder: plans.gears.with_train sets the train's ω
     drive = read_drive(drive_keys, links, sliders, points, cycle=cycle_keys)
     lengths = read_lengths(subtable(data, "lengths"), points, links)
+    check_dimensions(points, links, sliders, lengths)
     plans_table = subtable(data, "plans")
     draw, senses = read_draw({k: v for k, v in plans_table.items() if k not in ("output", "trace", "at")})
     if gears is not None and "draw" not in plans_table:

@@ -27,15 +27,21 @@ def read_drive(table: Mapping[str, Any], links: Mapping[str, Any], sliders: tupl
     rotary_keys, linear_keys = {"angle", "omega", "epsilon"}, {"displacement", "velocity", "acceleration"}
     extra = sorted(str(k) for k in set(table) - rotary_keys - linear_keys - {"link", "along"})
     if extra:
-        raise SceneError(f"unknown key {extra[0]!r}", key=f"drive.{extra[0]}")
+        raise SceneError(f"unknown key {extra[0]!r}; [drive] has link, angle, omega, epsilon (a crank or a coupler; "
+                         "positions, start for a crank's cycle) or link, along, displacement, velocity, acceleration "
+                         "(a slider or a cylinder)", key=f"drive.{extra[0]}")
     if set(table) & rotary_keys and set(table) & linear_keys:
         raise SceneError("mixes a rotary drive (angle, omega) with a linear one (displacement, velocity)",
                          key="drive")
+    linear = bool(set(table) & linear_keys)
+    if not linear and "along" in table:     # along = "0" too: it would do nothing
+        raise SceneError(_not_for("along", "an angle drive (a crank or a coupler: angle, omega)",
+                                  "link, angle, omega, epsilon, positions, start"), key="drive.along")
     along = link_ref(table["along"], "drive.along", links, "guide link") if "along" in table else FRAME
     if along == link:
         raise SceneError("a link cannot be driven along itself; `along` names the link carrying its guide "
                          "(the cylinder of a hydraulic drive)", key="drive.along")
-    if "displacement" in table or "velocity" in table:
+    if linear:
         kind, pos_key, speed_key, rate_key = DriveKind.LINEAR, "displacement", "velocity", "acceleration"
         if along != FRAME:
             kind = DriveKind.CYLINDER
@@ -46,17 +52,16 @@ def read_drive(table: Mapping[str, Any], links: Mapping[str, Any], sliders: tupl
         pos_bound, pos_why = MAX_COORD_M, COORD_WHY
         bounds = ((MAX_SPEED, "m/s"), (MAX_ACCELERATION, "m/s²"))
     else:
-        if along != FRAME:
-            raise SceneError("`along` names the cylinder of a linear drive (displacement, velocity); an angle "
-                             "drive has none: remove it", key="drive.along")
         kind, pos_key, speed_key, rate_key = DriveKind.ROTARY, "angle", "omega", "epsilon"
         pos_bound, pos_why = MAX_ANGLE_DEG, "° (about 2800 turns; beyond that a double cannot hold the angle exactly)"
         bounds = ((MAX_OMEGA, "rad/s"), (MAX_EPSILON, "rad/s²"))
     if cycle:
         if kind != DriveKind.ROTARY:
-            raise SceneError("positions = N divides one revolution of a crank; this drive is not a crank "
-                             "(a rotary drive with angle, omega): list the drive's values instead",
-                             key="drive.positions" if "positions" in cycle else "drive.start")
+            key = "positions" if "positions" in cycle else "start"
+            raise SceneError(_not_for(key, f"a linear drive ({'a cylinder' if along != FRAME else 'a slider'}: "
+                                      "displacement, velocity)", "link, along, displacement, velocity, acceleration",
+                                      fix="positions = N divides one revolution of a crank; list the drive's "
+                                      "values instead"), key=f"drive.{key}")
         count = cycle_positions(cycle)
         if isinstance(table.get(pos_key), list):
             raise SceneError("positions = N gives N equal steps from one first angle; give angle as one number "
@@ -93,6 +98,12 @@ def read_drive(table: Mapping[str, Any], links: Mapping[str, Any], sliders: tupl
             raise SceneError(f"{x:g} {unit}{when} is too small to compute with: give 0 (at rest) or at least "
                              f"{MIN_RATE:g} {unit} in magnitude", key=f"drive.{k}")
     return Drive(link=link, kind=kind, values=values, speed=speed, rate=rate, along=along)
+
+
+def _not_for(key: str, kind: str, keys: str, fix: str = "remove it") -> str:
+    """The words refusing a [drive] key that means nothing for this kind of drive, as an unknown
+    key is refused: the key, the drive's kind and the keys that apply to it."""
+    return f"{key} does not apply to {kind}, whose [drive] keys are {keys}: {fix}"
 
 
 def _rate(value: Any, key: str, bound: float, unit: str) -> float:

@@ -1,6 +1,7 @@
 """Readers of the sketch: ``[points]`` (metres, x right, y up), ``[links]`` (lists of point
 names, ``"0"`` the frame), ``[[sliders]]`` (prismatic pairs and their guides) and
-``[lengths]`` (exact distances between two points of one link, m).
+``[lengths]`` (exact distances between two points of one link, m); and the shortest dimension
+they may give (:func:`check_dimensions`).
 
 Imports only plans.errors and modules of plans.scene (and the standard library).
 """
@@ -8,11 +9,11 @@ Imports only plans.errors and modules of plans.scene (and the standard library).
 from __future__ import annotations
 
 import math
-from typing import Any, Mapping
+from typing import Any, Callable, Mapping
 
 from ..errors import SceneError
 from .checks import COORD_WHY, SHOW, entry_key, link_ref, name_of, number, quoted, sketch_size
-from .values import FRAME, MAX_ANGLE_DEG, MAX_COORD_M, MIN_SIZE_M, Slider
+from .values import FRAME, MAX_ANGLE_DEG, MAX_COORD_M, MIN_LENGTH_RATIO, MIN_SIZE_M, Slider
 
 
 def read_points(table: Mapping[str, Any]) -> dict[str, tuple[float, float]]:
@@ -113,8 +114,10 @@ def read_sliders(items: Any, points: Mapping[str, Any], links: Mapping[str, Any]
 
 def read_lengths(table: Mapping[str, Any], points: Mapping[str, Any],
                  links: Mapping[str, tuple[str, ...]]) -> dict[frozenset[str], float]:
-    """``[lengths]``: AB or A-B = a distance (m) between two points of one link."""
+    """``[lengths]``: AB or A-B = a distance (m) between two points of one link, none shorter
+    than MIN_LENGTH_RATIO of the longest link dimension (:func:`_shortest`)."""
     lengths: dict[frozenset[str], float] = {}
+    written: dict[frozenset[str], str] = {}
     for key, value in table.items():
         full = f"lengths.{key}"
         if "-" in key:
@@ -136,4 +139,47 @@ def read_lengths(table: Mapping[str, Any], points: Mapping[str, Any],
         if pair in lengths:
             raise SceneError(f"length {a}{b} given twice", key=full)
         lengths[pair] = number(value, full, positive=True, bound=MAX_COORD_M, why=COORD_WHY)
+        written[pair] = full
+    bound, why = _shortest(points, links, lengths)
+    for pair, d in lengths.items():
+        if d < bound:
+            raise SceneError(f"{why(d)}; give the link a real length, or make the two points one", key=written[pair])
     return lengths
+
+
+def _shortest(points: Mapping[str, tuple[float, float]], links: Mapping[str, tuple[str, ...]],
+              lengths: Mapping[frozenset[str], float]) -> tuple[float, Callable[[float], str]]:
+    """The shortest dimension allowed (m): MIN_LENGTH_RATIO of the mechanism's longest (the
+    largest distance between two points of one link, given in [lengths] or sketched; not the
+    sketch's extent, which a block's point far out where two guides meet would set), and the
+    words that say why a distance ``d`` is refused."""
+    longest = max([math.dist(points[a], points[b]) for pts in links.values() for i, a in enumerate(pts)
+                   for b in pts[i + 1:]] + list(lengths.values()), default=0.0)
+    bound = MIN_LENGTH_RATIO * longest
+
+    def why(d: float) -> str:
+        return (f"{d:.3g} m is shorter than {bound:.3g} m, {MIN_LENGTH_RATIO:g} of the mechanism's longest link "
+                f"dimension ({longest:.4g} m), beyond what can be drawn or computed reliably")
+    return bound, why
+
+
+def check_dimensions(points: Mapping[str, tuple[float, float]], links: Mapping[str, tuple[str, ...]],
+                     sliders: tuple[Slider, ...], lengths: Mapping[frozenset[str], float]) -> None:
+    """Refuse two points of one link that (nearly) coincide in the sketch, the link's directions
+    coming from there, and a guide through = [P, Q] with P and Q that close: closer than the
+    shortest dimension allowed (:func:`_shortest`; [lengths] values are checked as they are read).
+    Points of different links may coincide: a pin over a pivot is a position, not a dimension."""
+    bound, why = _shortest(points, links, lengths)
+    for name, pts in links.items():
+        for i, a in enumerate(pts):
+            for b in pts[i + 1:]:
+                d = math.dist(points[a], points[b])
+                if d < bound:
+                    raise SceneError(f"points {a} and {b} (nearly) coincide in the sketch: {why(d)}; draw them "
+                                     "apart (a link's directions come from its sketch), or use one point",
+                                     key=entry_key("links", name))
+    for s in sliders:
+        if len(s.through) == 2 and math.dist(*(points[p] for p in s.through)) < bound:
+            raise SceneError(f"the guide through {s.through[0]} and {s.through[1]} is undefined: "
+                             f"{why(math.dist(*(points[p] for p in s.through)))}; draw the points apart or give one "
+                             "point and an angle", key=f"{s.key}.through")

@@ -36,6 +36,19 @@ CYCLE_STARTS = ("angle", "extreme")
 DEFAULT_DRAW = ("scheme", "velocity", "acceleration")
 
 # --- bounds of what a scene may ask for ------------------------------------------------------
+#: Largest scene or variants file, bytes (4 MB): the examples are 1–4 kB and a variants file of
+#: MAX_VARIANTS variants about 100 kB; a larger file (or /dev/zero) is refused before it is read.
+MAX_FILE_BYTES = 4_000_000
+#: Shortest dimension of a link, as a fraction of the mechanism's longest (the largest distance
+#: between two points of one link, [lengths] included): every [lengths] value, every distance of
+#: two points of one link in the sketch and the two points of a guide through = [P, Q] must be at
+#: least this far apart. Measured: a crank of 2.5e-8 of the loaded press's longest link (1e-8 m)
+#: draws a lever that fails plans check, one of 5e-9 of the crank-slider's (2e-9 m) a lever that
+#: disagrees with the group-by-group analysis by 1e-8; 1e-300 divides by zero. 1e-6 keeps a
+#: margin of 40 and is 0.24 µm on a 240 mm drawing: nothing a drawing can show. The longest link,
+#: not the sketch's extent, is the reference, since a block's point where nearly parallel guides
+#: meet lies far out (see MAX_COORD_M).
+MIN_LENGTH_RATIO = 1e-6
 #: Largest |coordinate| of a sketch point and largest length, m. Real linkages measure metres to
 #: tens of metres, but a construction point where two nearly parallel guides meet lies about
 #: size/angle away: 1e-13° from parallel that is ~1e16 m for a 1 m mechanism (the property tests
