@@ -18,4 +18,21 @@ from .structure import Structure, analyse_structure
 __all__ = ["AssemblyError", "DrawingError", "OutputError", "PlansError", "SceneError", "SingularPositionError",
            "StructureError", "Motion", "analyse", "Mechanism", "build_mechanism", "Scene", "parse_scene",
            "read_scene", "Sheet", "Sheets", "render", "Structure", "analyse_structure"]
-__version__ = "0.1.0"
+def _version() -> str:
+    """The installed distribution's version (pyproject.toml's), or pyproject.toml's own beside an
+    uninstalled checkout."""
+    from importlib import metadata
+    from pathlib import Path
+
+    here = Path(__file__).resolve().parent.parent / "pyproject.toml"
+    if here.is_file():                      # a checkout: its pyproject is the truth
+        import tomllib
+
+        return tomllib.loads(here.read_text(encoding="utf-8"))["project"]["version"]
+    try:
+        return metadata.version("plans")
+    except metadata.PackageNotFoundError:   # pragma: no cover - neither installed nor a checkout
+        return "0+unknown"
+
+
+__version__ = _version()

@@ -76,7 +76,7 @@ def _render(paths: Sequence[str], out: str, quiet: bool, formats: Sequence[str] 
                               file=path, key="SCENE.toml")
         files.update(converted)
         counts.append(len(converted))
-    write_files(files, out)
+    write_files(files, out, inputs=paths)
     for r, count in zip(rendered, counts):
         if not quiet:
             print(_table(r))
@@ -192,6 +192,11 @@ def _examples() -> list[Path]:
     return out
 
 
+def _version() -> str:
+    from . import __version__
+    return __version__
+
+
 def _option(value: str, flag: str, kind: type = float) -> float:
     """A number given on the command line, or a one-line error naming ``flag``."""
     try:
@@ -251,6 +256,7 @@ def _format_options(parser: argparse.ArgumentParser) -> None:
 def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="plans", description="Velocity and acceleration plans of planar "
                                      "linkages, drawn to scale from an exact vector core.")
+    parser.add_argument("--version", action="version", version=f"plans {_version()}")
     sub = parser.add_subparsers(dest="command", required=True)
     p = sub.add_parser("render", help="render scene files to SVG and JSON")
     p.add_argument("scenes", nargs="+", metavar="SCENE.toml")

@@ -182,6 +182,14 @@ def convert(files: Mapping[str, str], formats: Sequence[str], dpi: float = DEFAU
     if unknown or not wanted:
         raise OutputError(f"unknown format {sorted(unknown)[0]!r}" if unknown else "no format given",
                           key="--format")
+    if "png" in wanted:        # every sheet's pixel size before any is drawn
+        for name, text in files.items():
+            size = sheet_size_mm(text) if name.endswith(".svg") else None
+            if size is not None:
+                try:
+                    _check_png_size(size, dpi)
+                except OutputError as exc:
+                    raise OutputError(exc.message, file=name, key=exc.key) from None
     out: dict[str, str | bytes] = {}
     for name, text in files.items():
         if not name.endswith(".svg"):

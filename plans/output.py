@@ -13,7 +13,7 @@ import errno
 import os
 import secrets
 from pathlib import Path
-from typing import Mapping
+from typing import Iterable, Mapping
 
 from .errors import OutputError
 
@@ -21,6 +21,14 @@ __all__ = ["write_files", "check_folder"]
 
 #: Option named in output errors.
 OPTION = "-o"
+
+
+def _same_file(a: Path, b: Path) -> bool:
+    """Whether paths ``a`` and ``b`` name one existing file (links and ``..`` resolved)."""
+    try:
+        return a.exists() and b.exists() and os.path.samefile(a, b)
+    except OSError:
+        return False
 
 
 def check_folder(out_dir: str | Path) -> None:
@@ -47,12 +55,19 @@ def _writable(folder: Path) -> bool:
     return os.access(folder, os.W_OK | os.X_OK)
 
 
-def write_files(files: Mapping[str, str | bytes], out_dir: str | Path) -> list[Path]:
+def write_files(files: Mapping[str, str | bytes], out_dir: str | Path, *, inputs: Iterable[str | Path] = ()) -> list[Path]:
     """Write ``files`` (name → text, written as UTF-8, or bytes, written as they are: a PNG,
-    a PDF) into ``out_dir`` (made if needed), all or nothing."""
+    a PDF) into ``out_dir`` (made if needed), all or nothing. An output that would replace one
+    of ``inputs`` (the files the run read) is refused before anything is written."""
     out = Path(out_dir)
     check_folder(out)
     targets = [out / name for name in files]
+    read = [Path(p) for p in inputs]
+    for target in targets:
+        clash = next((p for p in read if _same_file(p, target)), None)
+        if clash is not None:
+            raise OutputError(f"would overwrite the input file {clash} with an output of the same name; choose "
+                              "another -o (or rename the input)", file=str(target), key=OPTION)
     for target in targets:
         if target.is_dir() or (target.exists() and not target.is_file()):
             raise OutputError("a folder (or another non-file) is where this output file goes; move it away or "

@@ -23,7 +23,11 @@ def stem_of(title: str) -> str:
 
 
 def checked_stem(stem: str) -> str:
-    """``stem`` when it names files in one folder (no separator, not empty, ``.`` or ``..``)."""
-    if not isinstance(stem, str) or not stem or stem in (".", "..") or re.search(r"[/\\\x00]", stem):
-        raise OutputError(f"stem {stem!r} cannot name a file; give a plain name such as 'four_bar'", key="stem")
+    """``stem`` when it names files in one folder: one line of printable characters (no line
+    break, tab or control character), no path separator, not empty, ``.`` or ``..``, at most
+    :data:`MAX_STEM_CHARS` × 2 characters."""
+    if not isinstance(stem, str) or not stem.strip() or stem in (".", "..") or re.search(r"[/\\]", stem) \
+            or not stem.isprintable() or len(stem) > 2 * MAX_STEM_CHARS:
+        raise OutputError(f"stem {stem!r} cannot name a file; give a plain name on one line such as 'four_bar'",
+                          key="stem")
     return stem

@@ -15,7 +15,8 @@ from pathlib import Path
 from typing import Iterator, Sequence
 
 from ..constructions import Scales
-from ..export import DEFAULT_DPI, convert, parse_formats, require_cairo
+from ..errors import OutputError
+from ..export import DEFAULT_DPI, MAX_DPI, MIN_DPI, convert, parse_dpi, parse_formats, require_cairo
 from ..gears import GearAnalysis
 from ..kinematics import Motion
 from ..kinetostatics import Forces
@@ -90,7 +91,10 @@ class Sheets(Rendered):
         return json.loads(self.json)
 
     def __getitem__(self, name: str) -> Sheet:
-        return self.sheets[name]
+        sheets = self.sheets
+        if name not in sheets:
+            raise KeyError(f"no sheet {name!r}; the sheets are {', '.join(sheets) or 'none'}")
+        return sheets[name]
 
     def __iter__(self) -> Iterator[Sheet]:
         return iter(self.sheets.values())
@@ -125,10 +129,41 @@ class Sheets(Rendered):
         return save_files(self.files, folder, formats, dpi)
 
 
+#: The command line's words for save's arguments (errors raised below name the argument).
+_ARGUMENTS = {"-o": "folder", "--format": "formats", "--dpi": "dpi"}
+
+
+def _in_api_words(exc: OutputError) -> OutputError:
+    """``exc`` naming ``save``'s argument instead of the command line's option."""
+    message = exc.message
+    for flag, words in (("use --format svg", 'pass formats="svg"'), ("give --dpi", "give dpi ="),
+                        ("--format", "formats"), ("--dpi", "dpi"), ("another -o", "another folder"),
+                        ("choose a folder for -o", "give the path of a folder"), ("for -o", "for folder")):
+        message = message.replace(flag, words)
+    return OutputError(message, file=exc.file, key=_ARGUMENTS.get(exc.key or "", exc.key))
+
+
 def save_files(files: dict[str, str], folder: str | Path, formats: str | Sequence[str], dpi: float) -> list[Path]:
-    """Write ``files`` (name → text) into ``folder`` in ``formats``, all or nothing."""
-    wanted = parse_formats(formats if isinstance(formats, str) else ",".join(map(str, formats)))
-    check_folder(folder)
-    if set(wanted) - {"svg"}:
-        require_cairo()
-    return write_files(convert(files, wanted, dpi), folder)
+    """Write ``files`` (name → text) into ``folder`` in ``formats`` at ``dpi``, all or nothing.
+    Every argument is checked first, as the command line checks ``-o``, ``--format`` and
+    ``--dpi``; an error names the argument (``folder``, ``formats``, ``dpi``)."""
+    if isinstance(folder, bool) or not isinstance(folder, (str, Path)) or not str(folder).strip():
+        raise OutputError(f"folder is the path of a folder (a str or Path), got {folder!r}", key="folder")
+    if isinstance(formats, str):
+        text = formats
+    elif isinstance(formats, (list, tuple)) and all(isinstance(f, str) for f in formats):
+        text = ",".join(formats)
+    else:
+        raise OutputError(f"formats is \"svg,png\" or a list such as [\"svg\", \"png\"] of svg, png, pdf; got "
+                          f"{formats!r}", key="formats")
+    if isinstance(dpi, bool) or not isinstance(dpi, (int, float)):
+        raise OutputError(f"dpi is a number of dots per inch from {MIN_DPI:g} to {MAX_DPI:g}, got {dpi!r}", key="dpi")
+    try:
+        wanted = parse_formats(text)
+        dpi = parse_dpi(dpi)
+        check_folder(folder)
+        if set(wanted) - {"svg"}:
+            require_cairo()
+        return write_files(convert(files, wanted, dpi), folder)
+    except OutputError as exc:
+        raise _in_api_words(exc) from None
