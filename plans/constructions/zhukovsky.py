@@ -100,6 +100,7 @@ class LeverForce:
     arm: float
     foot: tuple[float, float]
     source: str = ""
+    direction: tuple[float, float] = (1.0, 0.0)    # unit; a zero force keeps its line's direction
 
     @property
     def length(self) -> float:
@@ -220,8 +221,6 @@ def zhukovsky_lever(plan, loads: Sequence[LeverLoad], balance: BalanceForce | Ba
                  enumerate(((e1, c.labels[0]), (e2, c.labels[1])))]
         for e, sign, name in ((e1, -1.0, names[0]), (e2, 1.0, names[1])):
             items.append((f"F:{c.quantity}:{name}", "couple", e, sign * c.moment * per, name, c.quantity))
-    if not items:
-        raise ConstructionError("Zhukovsky's lever: no loads")
     turned = [_turn(img, pole) for _, _, img, _, _, _ in items]
     total = sum(_cross(r - pole, f) for r, (_, _, _, f, _, _) in zip(turned, items))
     omega = None
@@ -237,6 +236,7 @@ def zhukovsky_lever(plan, loads: Sequence[LeverLoad], balance: BalanceForce | Ba
         result = -total / unit
         bal = [(balance.quantity, "balance", img, result * u, _label_of(pts, img, balance.label, "bal"),
                 balance.quantity)]
+        lines = {balance.quantity: u}
         kind, vec = "force", result * u
     elif isinstance(balance, BalanceMoment):
         e1, e2, per = _couple_direction(balance.ends, balance.length_m, balance.direction, balance.quantity)
@@ -250,12 +250,13 @@ def zhukovsky_lever(plan, loads: Sequence[LeverLoad], balance: BalanceForce | Ba
                  enumerate(((e1, balance.labels[0]), (e2, balance.labels[1])))]
         bal = [(f"F:{balance.quantity}:{name}", "balance", e, sign * result * per, name, balance.quantity)
                for e, sign, name in ((e1, -1.0, names[0]), (e2, 1.0, names[1]))]
+        lines = {f"F:{balance.quantity}:{names[0]}": -per, f"F:{balance.quantity}:{names[1]}": per}
         kind, vec = "moment", result * per
     else:
         raise ConstructionError(f"the balancing element {balance!r} is neither a BalanceForce nor a BalanceMoment")
     items += bal
     turned += [_turn(img, pole) for _, _, img, _, _, _ in bal]
-    fmax = max(float(np.hypot(*f)) for _, _, _, f, _, _ in items)
+    fmax = max([float(np.hypot(*f)) for _, _, _, f, _, _ in items] + [0.0])
     if mu is None:
         mu = standard_scale(fmax, window=window) if fmax > 0 else 1.0
     elif not (mu > 0 and math.isfinite(mu)):
@@ -266,11 +267,14 @@ def zhukovsky_lever(plan, loads: Sequence[LeverLoad], balance: BalanceForce | Ba
         fn = float(np.hypot(*f))
         if fn > 0:
             u = f / fn
-            foot = r - float((r - pole) @ u) * u
             arm = abs(m) / fn
-        else:
-            foot, arm = pole.copy(), 0.0
-        forces.append(LeverForce(q, k, label, _pt(r), _pt(f), _pt(r), _pt(r + f / mu), fn, m, arm, _pt(foot), src))
+        else:                   # a zero balancing element keeps the line it acts along
+            d = lines.get(q, np.array([1.0, 0.0]))
+            u = np.asarray(d, float) / float(np.hypot(*d))
+            arm = abs(_cross(r - pole, u))
+        foot = r - float((r - pole) @ u) * u
+        forces.append(LeverForce(q, k, label, _pt(r), _pt(f), _pt(r), _pt(r + f / mu), fn, m, arm, _pt(foot), src,
+                                 _pt(u)))
     rotated = []
     for p in pts:
         rotated.append(PlanPoint(p.label, _pt(_turn(np.asarray(p.xy, dtype=float), pole))))

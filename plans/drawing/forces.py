@@ -332,6 +332,8 @@ def _lever_text(lever: Lever) -> list[str]:
         h = f"h_{_sub(str(numbers[k]))}" if k in numbers else "h"
         rows.append(f"  {symbol(f.quantity)} = {_number(f.value)} N, {h} = {_number(f.arm)} mm:  "
                     f"{_signed(f.moment, 5)}")
+    if not loads:
+        rows.append("  no load acts at this position (none given, or every one zero):")
     rows.append(f"Σ M_p(loads) = {_signed(lever.moment_sum, 5)} N·mm;  Σ M_p = 0 gives")
     if lever.balance == "force":
         f = lever.forces[-1]
@@ -346,12 +348,16 @@ def _lever_text(lever: Lever) -> list[str]:
         m = symbol(lever.balance_quantity)
         rows.append(f"  {m} as the couple F′ = {m} / l_{{OA}} ⊥ OA at o and a: its moment about p is {m}·k, "
                     f"k = {_signed(lever.unit_moment, 4)} mm/m;")
-        sense = "counter-clockwise" if lever.result > 0 else "clockwise"
+        sense = "counter-clockwise" if lever.result > 0 else "clockwise" if lever.result < 0 else "no moment"
         rows.append(f"  {m} = −Σ M_p(loads) / k = {_number(lever.result, 5)} N·m ({sense})")
-        if lever.omega:
+        if lever.omega and lever.result:
             drive = "driving" if lever.result * lever.omega > 0 else "braking"
             rows.append(f"  ω_1 = {_number(lever.omega, 4)} rad/s: {m} is {drive}")
     return rows
+
+
+#: A lever force drawn shorter than this (mm) records the direction of its line, not of its ends.
+SHORT_MM = 1e-6
 
 
 def draw_lever(lever: Lever, heading: Heading, *, ident: str, style: Style = Style()) -> str:
@@ -414,6 +420,10 @@ def _lever_layers(dwg, canvas: Canvas, lever: Lever, ident: str, style: Style) -
         draw = _dashed_vector if f.quantity.startswith("F:M:") else _solid_vector
         el = draw(canvas, g, f.tail, f.head, colour, f"{ident}-v{k}", f"{ident}-h{k}", style)
         _tag(el, canvas, f.quantity, f.value, f.tail, f.head, f.at, f.quantity)
+        if f.value / lever.mu < SHORT_MM:
+            # far too short for its ends to carry a direction (a zero, or vanishing, balancing
+            # element: its head is its tail in floating point): the direction of its line
+            el.attribs["data-direction"] = repr(math.degrees(math.atan2(-f.direction[1], f.direction[0])) + 0.0)
         el.attribs["data-h"] = repr(f.arm)
         el.attribs["data-moment"] = repr(f.moment)
         el.attribs["data-kind"] = f.kind

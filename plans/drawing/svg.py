@@ -126,6 +126,21 @@ def draw_plan(plan: Plan, heading: Heading, *, ident: str, style: Style = Style(
     return dwg.tostring()
 
 
+def draw_empty(kind: str, heading: Heading, *, ident: str, style: Style = Style(), notes: Sequence[str] = ()) -> str:
+    """A sheet of ``kind`` (``force``, ``lever`` …) asked for but with nothing to draw at this
+    position: a plan group with no vector (``data-vectors="0"``, which ``plans check`` reports as
+    empty) and ``notes`` saying why."""
+    dwg, canvas = _sheet((0.0, 0.0, 120.0, 60.0), heading, "nothing to draw: no scale", ident, style)
+    g = dwg.g(id=f"{ident}-plan")
+    g.attribs["data-mu"] = "1.0"
+    g.attribs["data-plan"] = kind
+    g.attribs["data-vectors"] = "0"
+    dwg.add(g)
+    if notes:
+        note_lines(canvas, dwg.add(dwg.g(id=f"{ident}-notes")), notes, style)
+    return dwg.tostring()
+
+
 def plan_group(dwg, canvas: Canvas, plan, kind: str, ident: str, style: Style):
     """The group of a plan of ``kind`` (velocity, acceleration, force …) that ``plans check``
     reads: its scale (``data-mu``), kind and vector count, holding the plan's construction

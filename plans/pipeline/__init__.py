@@ -30,7 +30,7 @@ from .result import Rendered, Sheet, Sheets
 from .scales import scene_scales
 from .sheets.centres import centres_sheets
 from .sheets.cycle import cycle_sheets
-from .sheets.forces import LEVER_RTOL, force_sheets
+from .sheets.forces import LEVER_RTOL, force_sheets, force_warnings
 from .sheets.gears import gear_sheets
 from .sheets.koshel import koshel_sheets
 from .sheets.page import Page
@@ -95,6 +95,7 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
     if forces is not None:
         sheets, levers = force_sheets(scene, motion, forces, scales, own, stem=stem, path=path, style=style)
         files.update(sheets)
+        warnings.extend(force_warnings(scene, motion, forces, levers, own, path))
     data = report(scene, motion, scales, forces, levers)
     if cycle is not None:
         sheets, data["cycle"] = cycle_sheets(scene, cycle, scales, stem, style)
