@@ -69,7 +69,6 @@ class CentresSheet:
     rays: tuple[CentreRay, ...]
     lines: tuple[tuple[tuple[float, float], tuple[float, float]], ...]
     special: tuple[tuple[str, tuple[float, float]], ...]
-    at_rest: tuple[str, ...] = ()       # links at rest at this instant: no centre (a note says so)
 
 
 def _xy(v) -> tuple[float, float]:
@@ -105,21 +104,17 @@ def centres_sheet(motion: Motion, i: int) -> CentresSheet:
     ext = every.max(axis=0) - every.min(axis=0)
     mu = max(fitting_scale(float(ext[0]) or size, SHEET_MM[0]), fitting_scale(float(ext[1]) or size, SHEET_MM[1]))
     sch = scheme(motion, i, mu)
-    marks, rays, lines, still = [], [], [], []
-    label = centre_labels(ic.absolute.values(), mech.sketch)
+    marks, rays, lines = [], [], []
     for name, c in ic.absolute.items():
-        if c.at_rest(i):
-            still.append(name)
-            continue
         link_pts = [p for p in mech.links[name].points if p in world]
         anchor = np.mean([world[p] for p in link_pts], axis=0) / mu
         if name in near:
-            marks.append(CentreMark(label[c.name], name, _xy(near[name] / mu), None, _xy(anchor), False))
+            marks.append(CentreMark(c.name, name, _xy(near[name] / mu), None, _xy(anchor), False))
             for p in link_pts:
                 x = world[p]
                 if np.linalg.norm(x - near[name]) / mu < 1e-9:
                     continue   # the centre is this point (a pivot on the frame)
-                rays.append(CentreRay(f"r:{p}/{label[c.name]}", _xy(near[name] / mu), _xy(x / mu),
+                rays.append(CentreRay(f"r:{p}/{c.name}", _xy(near[name] / mu), _xy(x / mu),
                                       float(np.linalg.norm(x - near[name]))))
                 through = [near[name] / mu, x / mu]
                 other = _neighbour_centre(mech, name, p, near)
@@ -134,7 +129,7 @@ def centres_sheet(motion: Motion, i: int) -> CentresSheet:
                 continue   # a link at rest: no centre to show
         else:
             d = (c.point[i] - anchor * mu) / np.linalg.norm(c.point[i] - anchor * mu)
-        marks.append(CentreMark(label[c.name], name, None, _xy(d), _xy(anchor), bool(infinite)))
+        marks.append(CentreMark(c.name, name, None, _xy(d), _xy(anchor), bool(infinite)))
     special_marks = []
     for label, (s, v) in specials.items():
         if np.linalg.norm(s - middle) > REACH * size:
@@ -145,21 +140,7 @@ def centres_sheet(motion: Motion, i: int) -> CentresSheet:
         # S–P_base ⊥ v_S, unless S is the centre itself (v_S = 0 up to rounding)
         if centre is not None and np.linalg.norm(s - centre) / mu > MIN_DRAWN_MM:
             lines.append(_segment([s / mu, centre / mu]))
-    return CentresSheet(sch, mu, tuple(marks), tuple(rays), tuple(lines), tuple(special_marks), tuple(still))
-
-
-def centre_labels(found, points) -> dict[str, str]:
-    """The printed name of each centre (``P3``, ``P23``), primed (``P3′``) while it reads like a
-    point of the scene or another centre's name, so a segment ``r:X/P3′`` never joins point P3."""
-    taken = set(points)
-    out = {}
-    for c in found:
-        name = c.name
-        while name in taken:
-            name += "′"
-        taken.add(name)
-        out[c.name] = name
-    return out
+    return CentresSheet(sch, mu, tuple(marks), tuple(rays), tuple(lines), tuple(special_marks))
 
 
 def _neighbour_centre(mech, link: str, point: str, near: dict[str, np.ndarray]) -> np.ndarray | None:

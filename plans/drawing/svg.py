@@ -222,11 +222,6 @@ def draw_centres(sheet: CentresSheet, heading: Heading, *, formula: str, ident: 
         [p for line in sheet.lines for p in line]
     dwg, canvas = _sheet(bounds(coords), heading, f"μ_l = {sheet.mu_l:g} m/mm; P_j: centre of link j, "
                          f"P_j–X ⊥ v_X;  {formula}", ident, style)
-    if sheet.at_rest:
-        names = ", ".join(sheet.at_rest)
-        note_lines(canvas, dwg.add(dwg.g(id=f"{ident}-notes")),
-                   (f"link{'s' if len(sheet.at_rest) > 1 else ''} {names} at rest at this instant (every point's "
-                    "velocity below 1e-12 of the mechanism's): no centre",), style)
     cons = dwg.g(id=f"{ident}-construction", stroke=style.construction_colour, stroke_width=fmt(style.thin, 3),
                  stroke_dasharray=style.dash, fill="none")
     for k, (a, b) in enumerate(sheet.lines):

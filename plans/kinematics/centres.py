@@ -24,13 +24,7 @@ from ..scene import FRAME
 from .tolerances import INFINITY_RTOL
 from .state import J, Solution
 
-__all__ = ["Centre", "Centres", "centres", "centre_from", "velocity_scale", "INFINITY_RTOL", "REST_RTOL"]
-
-#: Two links whose relative velocity field (at every point of the mechanism) is below this
-#: fraction of the mechanism's velocity scale are at rest relative to each other: they have no
-#: centre (it would be a point set by rounding). Rounding leaves about 1e-16 of the scale; a
-#: stationary instant found by root-finding about 1e-15.
-REST_RTOL = 1e-12
+__all__ = ["Centre", "Centres", "centres", "centre_from", "INFINITY_RTOL"]
 
 
 
@@ -43,12 +37,6 @@ class Centre:
     links: tuple[str, str]
     point: np.ndarray
     direction: np.ndarray
-    rest: np.ndarray | None = None      # (N,) bool: the two links do not move relative to each other
-
-    def at_rest(self, n: int) -> bool:
-        """Whether the two links are at rest relative to each other at position n (up to
-        rounding: :data:`REST_RTOL`), so that there is no centre."""
-        return bool(self.rest is not None and self.rest[n])
 
     @property
     def name(self) -> str:
@@ -69,8 +57,7 @@ class Centres:
     relative: dict[tuple[str, str], Centre]
 
 
-def _centre(motion: Solution, i: str, j: str, scale: np.ndarray) -> Centre:
-    """P_ij; ``scale`` (N,) is the mechanism's velocity scale, m/s (:func:`velocity_scale`)."""
+def _centre(motion: Solution, i: str, j: str) -> Centre:
     si, sj = motion.links[i], motion.links[j]
     size = motion.mechanism.size
     w = (si.v - si.omega[:, None] * J(si.origin)) - (sj.v - sj.omega[:, None] * J(sj.origin))
@@ -81,25 +68,10 @@ def _centre(motion: Solution, i: str, j: str, scale: np.ndarray) -> Centre:
     speed = np.maximum(np.linalg.norm(v_rel, axis=1), np.abs(dw) * size)
     finite = np.abs(dw) * size > INFINITY_RTOL * speed
     safe = np.where(finite, dw, 1.0)
-    # at rest relative to each other, up to rounding: every point of the pair's relative field
-    # moves less than REST_RTOL of the mechanism's velocity scale (the centre would be noise)
-    rest = np.maximum(np.linalg.norm(v_rel, axis=1), np.abs(dw) * size) <= REST_RTOL * scale
-    point = np.where((finite & ~rest)[:, None], J(w) / safe[:, None], np.nan)
+    point = np.where(finite[:, None], J(w) / safe[:, None], np.nan)
     norm = np.linalg.norm(v_rel, axis=1)
-    direction = np.where((~finite & ~rest & (norm > 0.0))[:, None],
-                         J(v_rel) / np.where(norm > 0.0, norm, 1.0)[:, None], 0.0)
-    return Centre((i, j), point, direction, rest)
-
-
-def velocity_scale(motion: Solution) -> np.ndarray:
-    """The mechanism's velocity scale at each position, m/s: the largest |v| + |ω|·size of a
-    moving link (0 when everything stands)."""
-    size = motion.mechanism.size
-    out = np.zeros(len(motion.values))
-    for name in motion.mechanism.moving:
-        s = motion.links[name]
-        out = np.maximum(out, np.linalg.norm(s.velocity(s.origin), axis=1) + np.abs(s.omega) * size)
-    return out
+    direction = np.where((~finite & (norm > 0.0))[:, None], J(v_rel) / np.where(norm > 0.0, norm, 1.0)[:, None], 0.0)
+    return Centre((i, j), point, direction)
 
 
 def centres(motion: Solution) -> Centres:
@@ -107,9 +79,8 @@ def centres(motion: Solution) -> Centres:
     if motion.order < 1:
         raise ValueError("instantaneous centres need the velocities: solve with order >= 1")
     moving = motion.mechanism.moving
-    scale = velocity_scale(motion)
-    absolute = {name: _centre(motion, name, FRAME, scale) for name in moving}
-    relative = {(a, b): _centre(motion, a, b, scale) for a, b in combinations(moving, 2)}
+    absolute = {name: _centre(motion, name, FRAME) for name in moving}
+    relative = {(a, b): _centre(motion, a, b) for a, b in combinations(moving, 2)}
     return Centres(absolute, relative)
 
 

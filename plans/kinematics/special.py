@@ -157,8 +157,7 @@ def disagreement(motion, triad: TriadSolution) -> float:
     relative to the largest such value."""
     worst = 0.0
     mech = motion.mechanism
-    floor = _mechanism_scales(motion)      # per position: a group nearly at rest is compared with the
-    for link, s in triad.links.items():    # mechanism's velocities, not with its own rounding
+    for link, s in triad.links.items():
         ref = motion.links[link]
         pts = [ref.point(x) for x in mech.links[link].local.values()]
         kinds = [[(ref.omega[:, None] * mech.size, s.omega[:, None] * mech.size)]
@@ -166,32 +165,10 @@ def disagreement(motion, triad: TriadSolution) -> float:
         if motion.order >= 2:
             kinds.append([(ref.epsilon[:, None] * mech.size, s.epsilon[:, None] * mech.size)]
                          + [(ref.acceleration(x), s.acceleration(x)) for x in pts])
-        for k, pairs in enumerate(kinds):
-            own = max(float(np.max(np.abs(a))) for a, _ in pairs)
-            scale = np.maximum(own, floor[k]) if np.any(floor[k]) else (own or 1.0)
-            scale = np.where(scale > 0.0, scale, 1.0)
-            diff = np.max([np.max(np.abs(a - b), axis=1) for a, b in pairs], axis=0)
-            worst = max(worst, float(np.max(diff / scale)))
+        for pairs in kinds:
+            scale = max(float(np.max(np.abs(a))) for a, _ in pairs) or 1.0
+            worst = max(worst, max(float(np.max(np.abs(a - b))) for a, b in pairs) / scale)
     return worst
-
-
-def _mechanism_scales(motion) -> list[np.ndarray]:
-    """Per position, the largest |ω|·size and |v| of any moving link's points (and |ε|·size, |a|
-    at order 2): the scale rounding is relative to."""
-    mech = motion.mechanism
-    n = len(motion.values)
-    out = [np.zeros(n), np.zeros(n)]
-    for name in mech.moving:
-        st = motion.links[name]
-        pts = [st.point(x) for x in mech.links[name].local.values()]
-        out[0] = np.maximum(out[0], np.abs(st.omega) * mech.size)
-        for x in pts:
-            out[0] = np.maximum(out[0], np.linalg.norm(st.velocity(x), axis=1))
-        if motion.order >= 2:
-            out[1] = np.maximum(out[1], np.abs(st.epsilon) * mech.size)
-            for x in pts:
-                out[1] = np.maximum(out[1], np.linalg.norm(st.acceleration(x), axis=1))
-    return out
 
 
 def _unit(v: np.ndarray) -> np.ndarray:

@@ -62,12 +62,6 @@ def report(scene: Scene, motion: Motion, scales: Scales, forces: Forces | None =
             pos["conditioning"] = {g: float(s[i]) for g, s in motion.sines.items()}
         if ic is not None:
             pos["centres"] = {name: _xy(c.at(i)) for name, c in ic.absolute.items()}
-            still = [name for name, c in ic.absolute.items() if c.at_rest(i)]
-            if still:                   # null above: at rest, not at infinity
-                pos["centres_at_rest"] = still
-            still = [f"{a}-{b}" for (a, b), c in ic.relative.items() if c.at_rest(i)]
-            if still:
-                pos["relative_centres_at_rest"] = still
             pos["relative_centres"] = {f"{a}-{b}": _xy(c.at(i)) for (a, b), c in ic.relative.items()}
         if special_pts:
             pos["special_points"] = {g: {p.name: _special(p, i) for p in pts} for g, pts in special_pts.items()}

@@ -16,7 +16,7 @@ from .gears import read_gears, read_synthesis
 from .loads import read_balance, read_forces, read_gravity, read_masses, read_moments
 from .options import read_cycle, read_draw
 from .scales import read_scales
-from .sketch import check_dimensions, check_image_names, read_lengths, read_links, read_points, read_sliders
+from .sketch import check_dimensions, read_lengths, read_links, read_points, read_sliders
 from .gears import GearTrain
 from .values import MAX_TITLE_CHARS, Scene
 
@@ -63,7 +63,6 @@ def _parse(data: Mapping[str, Any], file: str | None) -> Scene:
     points = read_points(subtable(data, "points", required=True))
     links = read_links(subtable(data, "links", required=True), points)
     sliders = read_sliders(data.get("sliders", []), points, links)
-    check_image_names(points, links, sliders)
     drive_table = subtable(data, "drive", required=True)
     cycle_keys = {k: drive_table[k] for k in ("positions", "start") if k in drive_table}
     drive_keys = {k: v for k, v in drive_table.items() if k not in cycle_keys}

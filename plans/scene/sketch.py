@@ -183,19 +183,3 @@ def check_dimensions(points: Mapping[str, tuple[float, float]], links: Mapping[s
             raise SceneError(f"the guide through {s.through[0]} and {s.through[1]} is undefined: "
                              f"{why(math.dist(*(points[p] for p in s.through)))}; draw the points apart or give one "
                              "point and an angle", key=f"{s.key}.through")
-
-
-def check_image_names(points: Mapping[str, Any], links: Mapping[str, tuple[str, ...]],
-                      sliders: tuple[Slider, ...]) -> None:
-    """Refuse a point named like the image of another point on a sliding link: the plans name
-    "the point of link 3 now at A" ``A3``, so a point called ``A3`` beside point A on a block
-    that slides in link 3 would give two images one name (``v:A3``)."""
-    for s in sliders:
-        for link, other in ((s.on, s.link), (s.link, s.on)):
-            for x in links.get(other, ()):
-                name = f"{x}{link}"
-                if name in points and x not in links.get(link, ()):
-                    raise SceneError(f"point {name!r} reads like the point of link {link} now at {x} (its image on "
-                                     f"the plans is named {name}); rename point {name!r} to a name that is not a point's name "
-                                     "followed by a link's",
-                                     key=f"points.{name}")
