@@ -19,12 +19,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..kinematics import Motion
+from ..kinematics.tolerances import REST_RTOL
 from ..scene import FRAME
+from .plan_builder import PRIME
 from .plans import MIN_DRAWN_MM
 from .scales import fitting_scale
 from .scheme import Scheme, scheme
 
-__all__ = ["CentreMark", "CentreRay", "CentresSheet", "centres_sheet", "REACH"]
+__all__ = ["CentreMark", "CentreRay", "CentresSheet", "centres_sheet", "centre_label", "rest_note", "REACH"]
 
 #: Centres further than REACH mechanism sizes from the mechanism are drawn as directions.
 REACH = 1.5
@@ -61,7 +63,9 @@ class CentreRay:
 @dataclass(frozen=True)
 class CentresSheet:
     """The scheme, the centres, the measured rays, the dashed construction lines and the
-    special points of class III groups (name → mm) at one position."""
+    special points of class III groups (name → mm) at one position; ``resting``: the moving
+    links at rest there (to ``REST_RTOL`` of the mechanism's speed), which have no centre, and
+    ``notes`` the lines the sheet writes about them (:func:`rest_note`)."""
 
     scheme: Scheme
     mu_l: float
@@ -69,6 +73,8 @@ class CentresSheet:
     rays: tuple[CentreRay, ...]
     lines: tuple[tuple[tuple[float, float], tuple[float, float]], ...]
     special: tuple[tuple[str, tuple[float, float]], ...]
+    resting: tuple[str, ...] = ()
+    notes: tuple[str, ...] = ()
 
 
 def _xy(v) -> tuple[float, float]:
@@ -108,13 +114,14 @@ def centres_sheet(motion: Motion, i: int) -> CentresSheet:
     for name, c in ic.absolute.items():
         link_pts = [p for p in mech.links[name].points if p in world]
         anchor = np.mean([world[p] for p in link_pts], axis=0) / mu
+        label = centre_label(mech, name)
         if name in near:
-            marks.append(CentreMark(c.name, name, _xy(near[name] / mu), None, _xy(anchor), False))
+            marks.append(CentreMark(label, name, _xy(near[name] / mu), None, _xy(anchor), False))
             for p in link_pts:
                 x = world[p]
                 if np.linalg.norm(x - near[name]) / mu < 1e-9:
                     continue   # the centre is this point (a pivot on the frame)
-                rays.append(CentreRay(f"r:{p}/{c.name}", _xy(near[name] / mu), _xy(x / mu),
+                rays.append(CentreRay(f"r:{p}/{label}", _xy(near[name] / mu), _xy(x / mu),
                                       float(np.linalg.norm(x - near[name]))))
                 through = [near[name] / mu, x / mu]
                 other = _neighbour_centre(mech, name, p, near)
@@ -122,14 +129,16 @@ def centres_sheet(motion: Motion, i: int) -> CentresSheet:
                     through.append(other / mu)
                 lines.append(_segment(through))
             continue
+        if c.at_rest(i):
+            continue   # a link at rest: no centre to show (the sheet says so)
         infinite = np.isnan(c.point[i][0])
         if infinite:
             d = c.direction[i]
             if not np.any(d):
-                continue   # a link at rest: no centre to show
+                continue   # no direction either (cannot happen off rest; kept as a guard)
         else:
             d = (c.point[i] - anchor * mu) / np.linalg.norm(c.point[i] - anchor * mu)
-        marks.append(CentreMark(c.name, name, None, _xy(d), _xy(anchor), bool(infinite)))
+        marks.append(CentreMark(label, name, None, _xy(d), _xy(anchor), bool(infinite)))
     special_marks = []
     for label, (s, v) in specials.items():
         if np.linalg.norm(s - middle) > REACH * size:
@@ -140,7 +149,37 @@ def centres_sheet(motion: Motion, i: int) -> CentresSheet:
         # S–P_base ⊥ v_S, unless S is the centre itself (v_S = 0 up to rounding)
         if centre is not None and np.linalg.norm(s - centre) / mu > MIN_DRAWN_MM:
             lines.append(_segment([s / mu, centre / mu]))
-    return CentresSheet(sch, mu, tuple(marks), tuple(rays), tuple(lines), tuple(special_marks))
+    resting = tuple(name for name, c in ic.absolute.items() if c.at_rest(i))
+    notes = (rest_note(resting, float(motion.rate_scale(1)[i])),) if resting else ()
+    return CentresSheet(sch, mu, tuple(marks), tuple(rays), tuple(lines), tuple(special_marks), resting, notes)
+
+
+def _exponent(x: float) -> str:
+    """1e-9 as written on a sheet (not 1e-09)."""
+    mantissa, _, power = f"{x:.0e}".partition("e")
+    return f"{mantissa}e{int(power)}"
+
+
+def centre_label(mech, link: str) -> str:
+    """The name of link ``link``'s centre on a sheet and in its measured segments ``r:X/P…``:
+    ``P<link>``, primed (P3′, P3″ …) while a scene point has that name, so that the centre
+    is never taken for a point (a point named P3 beside the centre of link 3)."""
+    name = f"P{link}"
+    while name in mech.sketch:
+        name += PRIME
+    return name
+
+
+def rest_note(resting: tuple[str, ...], speed: float) -> str:
+    """What the sheet says of the links at rest; ``speed``: that of the mechanism's fastest
+    point (m/s)."""
+    names = resting[0] if len(resting) == 1 else f"{', '.join(resting[:-1])} and {resting[-1]}"
+    which = f"Link {names} is" if len(resting) == 1 else f"Links {names} are"
+    they = "it has" if len(resting) == 1 else "they have"
+    if speed == 0.0:
+        return f"{which} at rest at this position (the whole mechanism stands), so {they} no instantaneous centre."
+    return (f"{which} at rest at this position: ω and every v are zero to rounding (at most {_exponent(REST_RTOL)} "
+            f"of the fastest point's speed, {speed:.3g} m/s), so {they} no instantaneous centre.")
 
 
 def _neighbour_centre(mech, link: str, point: str, near: dict[str, np.ndarray]) -> np.ndarray | None:

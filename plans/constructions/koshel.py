@@ -26,7 +26,7 @@ from ..kinematics import Motion
 from ..kinematics.state import J
 from ..scene import FRAME, DriveKind
 from ..structure import ComplexGroup
-from .centres import REACH, CentreMark, CentreRay, _segment, _special_points
+from .centres import REACH, CentreMark, CentreRay, _segment, _special_points, centre_label
 from .plans import AT_REST, EXTENSION_MM, UNCERTAIN_MM, ConstructionLine, Plan, PlanPoint
 from .scales import fitting_scale
 from .scheme import Scheme, scheme
@@ -170,7 +170,7 @@ def koshel_sheet(motion: Motion, i: int, g: ComplexGroup, plan: Plan, segment: f
     centre cannot be constructed (fewer than two lines, or parallel ones)."""
     mech = motion.mechanism
     base = g.base
-    pname = f"P{base}"
+    pname = centre_label(mech, base)
     world = {p: motion.position(p)[i] for p in mech.sketch}
     pins = [p.point for p in g.inner if p.kind == "R"]
     driven = next(r for r in g.rods if r.form == "RR" and r.outer.b != FRAME)

@@ -3,11 +3,22 @@ what they are), vectors and lines, reads each image's v or a from the motion, le
 segment drawn twice, and makes the printed labels unique (primes; ``n``/``k`` ends yield to
 images printed with those letters).
 
+**Quantity names.** The point of link L now at X (a block's pin on its guide) is named ``XL``
+in the quantities (``v:A3/A2``), which ``plans check`` reads to join the ends of vectors.
+Where that joined name would read like another thing — a scene point of that name (a point
+``A3`` beside point A of link 3), or another point and link that join to the same text (A of
+link 33 and A3 of link 3) — it is written ``X@L`` instead (``v:A@3/A2``; primed if even that
+is a point's name), and its image's printed label gets a prime (``a3′`` beside the point's
+``a3``). Scenes without such a clash keep their names (:func:`joined_names`).
+
 Reads :class:`~plans.kinematics.Motion` only; must not import the relations or the
 constructions that use the builder.
 """
 
 from __future__ import annotations
+
+from collections import Counter
+from functools import lru_cache
 
 import numpy as np
 
@@ -24,6 +35,29 @@ def _label(motion: Motion, point: str, link: str) -> str:
 
 #: Marks a plan label that would otherwise repeat another (a point named P beside the pole p).
 PRIME = "′"
+#: Joins a point's and a link's names where the plain join would be ambiguous (``A@3``).
+JOIN = "@"
+
+
+@lru_cache(maxsize=8)
+def joined_names(points: tuple[str, ...], links: tuple[str, ...]) -> dict[tuple[str, str], str]:
+    """The quantity name of the point of link L at X, for every scene point X and link L:
+    ``XL``, unless that is a point's name or the join of another pair, then ``X@L`` (primed
+    while that is taken). Each name names one pair and no point."""
+    plain = {(x, l): x + l for x in points for l in links}
+    count = Counter(plain.values())
+    names = set(points)
+    out = {k: n for k, n in plain.items() if count[n] == 1 and n not in names}
+    taken = names | set(out.values())
+    for (x, l), n in plain.items():
+        if (x, l) in out:
+            continue
+        name = x + JOIN + l
+        while name in taken:
+            name += PRIME
+        taken.add(name)
+        out[(x, l)] = name
+    return out
 #: Kinds of component ends (image keys) and their letters: normal ``n``, Coriolis ``k``.
 COMPONENT_ENDS = ("n", "k")
 
@@ -103,7 +137,30 @@ class _Builder:
         return self.motion.position(point)[self.i]
 
     def label(self, point: str, link: str) -> str:
-        return point if point in self.extra else _label(self.motion, point, link)
+        """How the point of ``link`` at ``point`` is printed (its image in lower case): ``B``
+        when ``link`` carries B (or B is a constructed point), else :meth:`joined_label`."""
+        if point in self.extra or point in self.motion.mechanism.links[link].local:
+            return point
+        return self.joined_label(point, link)
+
+    def joined_label(self, point: str, link: str) -> str:
+        """``B3`` for the point of link 3 at B, primed (``B3′``) where its quantity name is
+        ``B@3`` (the plain join names something else too, :func:`joined_names`)."""
+        plain = point + link
+        return plain if self.joined(point, link) == plain else plain + PRIME
+
+    def joined(self, point: str, link: str) -> str:
+        """The quantity name of the point of ``link`` at ``point`` written with its link, as
+        a sliding pair's ends are (``B3``; ``B@3`` on a clash, see :func:`joined_names`)."""
+        mech = self.motion.mechanism
+        return joined_names(tuple(mech.sketch), tuple(mech.links))[(point, link)]
+
+    def name(self, point: str, link: str) -> str:
+        """The quantity name of the point of ``link`` at ``point``: ``B`` when ``link`` carries
+        B (or B is a constructed point such as S1), else :meth:`joined`."""
+        if point in self.extra or point in self.motion.mechanism.links[link].local:
+            return point
+        return self.joined(point, link)
 
     def quantity(self, point: str, link: str) -> np.ndarray:
         """v (m/s) or a (m/s²) of the point of ``link`` now at ``point``, as the motion gives it."""

@@ -13,17 +13,18 @@ import numpy as np
 from ..kinematics import Motion
 from ..kinematics.state import J
 from ..scene import FRAME
-from .plan_builder import _Builder, _at_pole, _label, _same
+from .plan_builder import _Builder, _at_pole, _same
 from .relations import Relation
 
 
 def _rigid(b: _Builder, rel: Relation, sym: str) -> None:
     motion, link = b.motion, rel.link
-    xl, yl = b.label(rel.x, link), b.label(rel.y, link)
+    xl, yl = b.label(rel.x, link), b.label(rel.y, link)     # as printed
+    xn, yn = b.name(rel.x, link), b.name(rel.y, link)       # as the quantities name them
     tail, head = b.image(rel.y, link), b.image(rel.x, link)
     r = b.world(rel.x) - b.world(rel.y)   # the link's segment Y → X, m
     state = motion.links[link]
-    q = f"{sym}:{xl}/{yl}"
+    q = f"{sym}:{xn}/{yn}"
     if sym == "v" or not rel.pair:
         if rel.group == "I" and sym == "v":
             return  # the crank tip's velocity relative to the fixed pivot is its absolute velocity
@@ -36,7 +37,7 @@ def _rigid(b: _Builder, rel: Relation, sym: str) -> None:
     normal = -w * w * r
     if rel.group == "I" and e == 0.0:
         return  # a crank turning uniformly: πa is the normal component itself
-    n_xy = b.put(("n", xl, yl), f"n_{xl}{yl}", np.add(tail, normal / b.mu))
+    n_xy = b.put(("n", xn, yn), f"n_{xl}{yl}", np.add(tail, normal / b.mu))
     both = b.vector(f"{q}:n", tail, n_xy, float(np.linalg.norm(normal)), "normal")
     both &= b.vector(f"{q}:t", n_xy, head, abs(e) * float(np.linalg.norm(r)), "tangential")
     b.line(n_xy, J(r), [head], f"{q}:t", rel.line_group)
@@ -69,7 +70,7 @@ def _close_figures(b: _Builder, sym: str) -> None:
             if b.fixed(x, link) or (_at_pole(b.image(x, link)) and not _at_pole(b.image(y, link))):
                 x, y = y, x       # never a side into the pole
             tail, head = b.image(y, link), b.image(x, link)
-            q = f"{sym}:{b.label(x, link)}/{b.label(y, link)}"
+            q = f"{sym}:{b.name(x, link)}/{b.name(y, link)}"
             if q in drawn or joined(tail, head):
                 continue
             b.vector(q, tail, head, float(np.linalg.norm(b.quantity(x, link) - b.quantity(y, link))), "relative")
@@ -91,7 +92,7 @@ def _slide(b: _Builder, rel: Relation, sym: str, pole) -> None:
     u = motion.links[guide].direction(pr.direction)[b.i]
     if FRAME in (slider, guide):
         moving = slider if guide == FRAME else guide
-        b.line(pole, u, [b.image(rel.x, moving)], f"{sym}:{_label(motion, rel.x, moving)}", rel.line_group)
+        b.line(pole, u, [b.image(rel.x, moving)], f"{sym}:{b.name(rel.x, moving)}", rel.line_group)
         return
     # the construction starts from the image already known: the guide's when it was solved
     # before the group (a slider of the group on a known turning guide), the slider's when it
@@ -102,7 +103,7 @@ def _slide(b: _Builder, rel: Relation, sym: str, pole) -> None:
         known, moving = slider, guide
     else:
         known, moving = guide, slider
-    kl, ml = f"{rel.x}{known}", f"{rel.x}{moving}"
+    kl, ml = b.joined(rel.x, known), b.joined(rel.x, moving)       # as the quantities name them
     tail, head = b.image(rel.x, known), b.image(rel.x, moving)
     q = f"{sym}:{ml}/{kl}"
     if sym == "v":
@@ -116,7 +117,8 @@ def _slide(b: _Builder, rel: Relation, sym: str, pole) -> None:
     slide = b.slide(slider, guide)
     sense = 1.0 if moving == slider else -1.0
     coriolis = sense * slide.coriolis[b.i]
-    k_xy = b.put(("k", ml, kl), f"k_{ml}{kl}", np.add(tail, coriolis / b.mu))
+    k_xy = b.put(("k", ml, kl), f"k_{b.joined_label(rel.x, moving)}{b.joined_label(rel.x, known)}",
+                 np.add(tail, coriolis / b.mu))
     b.vector(f"{q}:cor", tail, k_xy, float(np.linalg.norm(coriolis)), "coriolis")
     b.vector(f"{q}:r", k_xy, head, abs(float(slide.a[b.i])), "sliding")
     b.line(k_xy, u, [head], f"{q}:r", rel.line_group)

@@ -41,17 +41,17 @@ def _special(b: _Builder, g: ComplexGroup, sym: str) -> None:
     for r in p.rods:
         rod = ax[r].rod
         pin = rod.inner.point if rod.form == "PR" else rod.outer.point
-        k_lab = b.label(pin, ax[r].known)
+        k_lab, k_name = b.label(pin, ax[r].known), b.name(pin, ax[r].known)    # printed, in quantities
         k_img = b.image(pin, ax[r].known)
         e = ax[r].normal[i]
-        q = f"{sym}:{s_name}/{k_lab}"
+        q = f"{sym}:{s_name}/{k_name}"
         total = b.quantity(s_name, g.base) - b.quantity(pin, ax[r].known)
         if sym == "v":
             b.vector(q, k_img, s_img, float(np.linalg.norm(total)), "relative")
             b.line(k_img, e, [s_img], q, f"{g.name}:{s_name}")
             continue
         c = found.known[(route, r)][i] - b.quantity(pin, ax[r].known)      # normal (and Coriolis) components, known
-        n_xy = b.put(("n", s_name, k_lab), f"n_{s_name}{k_lab}", np.add(k_img, c / b.mu))
+        n_xy = b.put(("n", s_name, k_name), f"n_{s_name}{k_lab}", np.add(k_img, c / b.mu))
         b.vector(f"{q}:n", k_img, n_xy, float(np.linalg.norm(c)), "normal")
         b.vector(f"{q}:t", n_xy, s_img, float(np.linalg.norm(total - c)), "tangential")
         b.line(n_xy, e, [s_img], f"{q}:t", f"{g.name}:{s_name}")

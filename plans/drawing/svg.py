@@ -250,5 +250,7 @@ def draw_centres(sheet: CentresSheet, heading: Heading, *, formula: str, ident: 
         canvas.label(labels, xy, _markup(name), size=style.small_text, prefer=(1.0, -1.0), ident=f"{ident}-st{k}",
                      digits=False, near=0.5, fill=style.component_colour)
     dwg.add(labels)
+    if sheet.notes:
+        note_lines(canvas, dwg.add(dwg.g(id=f"{ident}-notes")), sheet.notes, style)
     canvas.place_labels(labels)
     return dwg.tostring()

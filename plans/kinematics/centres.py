@@ -11,6 +11,15 @@ With j the frame this is the absolute centre P_i = o_i + k × v_oi / ω_i. When 
 centre is at infinity: it is reported as ``None`` and its direction — normal to the common
 relative velocity — is given instead; nothing is divided by zero. By Aronhold–Kennedy's
 theorem P_ij, P_jk and P_ik lie on one line.
+
+**At rest.** When link i does not move relative to j at all — |ω_i − ω_j|·size and the
+relative speed of i's first point both at most ``REST_RTOL`` (1e-9) × the speed of the
+mechanism's fastest point at that position
+(:meth:`~plans.kinematics.state.Solution.rate_scale`) — there is no centre: ``rest`` is True,
+the point is NaN and the direction zero. This is what a stationary instant found by
+root-finding gives (ω ~ 1e-16: without the test, X = k × w / (ω_i − ω_j) would be rounding
+over rounding); the centre's limit as the instant is approached (the link's acceleration
+pole) is not reported.
 """
 
 from __future__ import annotations
@@ -21,22 +30,24 @@ from itertools import combinations
 import numpy as np
 
 from ..scene import FRAME
-from .tolerances import INFINITY_RTOL
+from .tolerances import INFINITY_RTOL, REST_RTOL
 from .state import J, Solution
 
-__all__ = ["Centre", "Centres", "centres", "centre_from", "INFINITY_RTOL"]
+__all__ = ["Centre", "Centres", "centres", "centre_from", "INFINITY_RTOL", "REST_RTOL"]
 
 
 
 @dataclass(frozen=True)
 class Centre:
-    """P_ij at N positions: ``point`` (N, 2) in metres, NaN where at infinity;
-    ``direction`` (N, 2), a unit vector towards the centre at infinity (zero where finite,
-    or where the two links do not move relative to each other at all)."""
+    """P_ij at N positions: ``point`` (N, 2) in metres, NaN where at infinity or at rest;
+    ``direction`` (N, 2), a unit vector towards the centre at infinity (zero where finite or
+    at rest); ``rest`` (N,), True where the two links do not move relative to each other (to
+    ``REST_RTOL`` of the speed of the mechanism's fastest point): no centre."""
 
     links: tuple[str, str]
     point: np.ndarray
     direction: np.ndarray
+    rest: np.ndarray
 
     @property
     def name(self) -> str:
@@ -44,9 +55,13 @@ class Centre:
         return f"P{i}" if j == FRAME else f"P{i}{j}" if len(i + j) == 2 else f"P{i},{j}"
 
     def at(self, n: int) -> tuple[float, float] | None:
-        """The centre at position n (m), or None when it is at infinity."""
+        """The centre at position n (m), or None when it is at infinity or at rest."""
         p = self.point[n]
         return None if np.isnan(p[0]) else (float(p[0]), float(p[1]))
+
+    def at_rest(self, n: int) -> bool:
+        """Whether the two links are at rest relative to each other at position n (no centre)."""
+        return bool(self.rest[n])
 
 
 @dataclass(frozen=True)
@@ -57,7 +72,9 @@ class Centres:
     relative: dict[tuple[str, str], Centre]
 
 
-def _centre(motion: Solution, i: str, j: str) -> Centre:
+def _centre(motion: Solution, i: str, j: str, scale: np.ndarray) -> Centre:
+    """P_ij; ``scale`` (N,) the speed of the mechanism's fastest point at each position (m/s),
+    for the rest test."""
     si, sj = motion.links[i], motion.links[j]
     size = motion.mechanism.size
     w = (si.v - si.omega[:, None] * J(si.origin)) - (sj.v - sj.omega[:, None] * J(sj.origin))
@@ -66,21 +83,29 @@ def _centre(motion: Solution, i: str, j: str) -> Centre:
     x = si.origin
     v_rel = si.velocity(x) - sj.velocity(x)
     speed = np.maximum(np.linalg.norm(v_rel, axis=1), np.abs(dw) * size)
-    finite = np.abs(dw) * size > INFINITY_RTOL * speed
+    # at rest: the relative field v_rel(X0) + (ω_i − ω_j)·k × (X − X0) is below the bound at the
+    # link's first point X0 and turns by no more than it over the mechanism's size
+    x0 = si.point(next(iter(motion.mechanism.links[i].local.values())))
+    still = np.maximum(np.linalg.norm(si.velocity(x0) - sj.velocity(x0), axis=1), np.abs(dw) * size)
+    rest = still <= REST_RTOL * scale
+    finite = (np.abs(dw) * size > INFINITY_RTOL * speed) & ~rest
     safe = np.where(finite, dw, 1.0)
     point = np.where(finite[:, None], J(w) / safe[:, None], np.nan)
     norm = np.linalg.norm(v_rel, axis=1)
-    direction = np.where((~finite & (norm > 0.0))[:, None], J(v_rel) / np.where(norm > 0.0, norm, 1.0)[:, None], 0.0)
-    return Centre((i, j), point, direction)
+    infinite = ~finite & ~rest & (norm > 0.0)
+    direction = np.where(infinite[:, None], J(v_rel) / np.where(norm > 0.0, norm, 1.0)[:, None], 0.0)
+    return Centre((i, j), point, direction, rest)
 
 
 def centres(motion: Solution) -> Centres:
-    """Every absolute and relative centre of the mechanism (needs velocities)."""
+    """Every absolute and relative centre of the mechanism (needs velocities); a pair of links
+    at rest relative to each other (see the module's docstring, ``REST_RTOL``) has none."""
     if motion.order < 1:
         raise ValueError("instantaneous centres need the velocities: solve with order >= 1")
     moving = motion.mechanism.moving
-    absolute = {name: _centre(motion, name, FRAME) for name in moving}
-    relative = {(a, b): _centre(motion, a, b) for a, b in combinations(moving, 2)}
+    scale = motion.rate_scale(1)
+    absolute = {name: _centre(motion, name, FRAME, scale) for name in moving}
+    relative = {(a, b): _centre(motion, a, b, scale) for a, b in combinations(moving, 2)}
     return Centres(absolute, relative)
 
 

@@ -154,9 +154,13 @@ def disagreements(motion) -> dict[str, float]:
 def disagreement(motion, triad: TriadSolution) -> float:
     """Largest difference between the special-point solution ``triad`` and the Jacobian
     solution in ``motion`` of a group's links (ω·size and v of every point; ε·size and a),
-    relative to the largest such value."""
+    relative to the speed (acceleration) of the mechanism's fastest point at that position
+    (:meth:`~plans.kinematics.state.Solution.rate_scale`): a link at rest up to rounding (a
+    stationary instant) is compared with the mechanism's motion, not with its own noise."""
     worst = 0.0
     mech = motion.mechanism
+    scales = [motion.rate_scale(k) for k in range(1, motion.order + 1)]
+    scales = [np.where(sc > 0.0, sc, 1.0)[:, None] for sc in scales]
     for link, s in triad.links.items():
         ref = motion.links[link]
         pts = [ref.point(x) for x in mech.links[link].local.values()]
@@ -165,9 +169,8 @@ def disagreement(motion, triad: TriadSolution) -> float:
         if motion.order >= 2:
             kinds.append([(ref.epsilon[:, None] * mech.size, s.epsilon[:, None] * mech.size)]
                          + [(ref.acceleration(x), s.acceleration(x)) for x in pts])
-        for pairs in kinds:
-            scale = max(float(np.max(np.abs(a))) for a, _ in pairs) or 1.0
-            worst = max(worst, max(float(np.max(np.abs(a - b))) for a, b in pairs) / scale)
+        for pairs, scale in zip(kinds, scales):
+            worst = max(worst, max(float(np.max(np.abs(a - b) / scale)) for a, b in pairs))
     return worst
 
 

@@ -218,5 +218,18 @@ class Solution:
             return self.links[link].acceleration(xy)
         return self.links[link].take(np.array([i])).acceleration(np.asarray(xy, float)[None, :])[0]
 
+    def rate_scale(self, order: int = 1) -> np.ndarray:
+        """How fast the mechanism moves at each position, (N,): the speed of its fastest point,
+        the largest |v| of any point of any moving link (m/s; ``order`` 2: the largest |a|,
+        m/s²). The scale against which a value is zero up to rounding (a link at rest, the
+        class III cross-check's difference)."""
+        mech, out = self.mechanism, np.zeros(len(self.values))
+        for name in mech.moving:
+            s = self.links[name]
+            field = s.velocity if order == 1 else s.acceleration
+            for local in mech.links[name].local.values():
+                np.maximum(out, np.linalg.norm(field(s.point(local)), axis=1), out=out)
+        return out
+
     def __len__(self) -> int:
         return len(self.values)

@@ -8,7 +8,7 @@ condition figure for class III/IV groups (±1 well conditioned, 0 singular).
 from __future__ import annotations
 
 __all__ = ["SINGULAR_SIN", "WARN_SIN", "JUMP_RATIO", "ASSEMBLY_RTOL", "PARALLEL_DET", "NEWTON_RTOL", "MAX_ITER",
-           "COARSE_RTOL", "CROSS_CHECK_RTOL", "INFINITY_RTOL"]
+           "COARSE_RTOL", "CROSS_CHECK_RTOL", "INFINITY_RTOL", "REST_RTOL"]
 
 #: |sin| of a group's velocity equations below which the position is reported as singular.
 #: At an exact dead centre rounding leaves |sin| ~ sqrt(machine eps) ~ 1e-8, so the bound
@@ -37,10 +37,18 @@ MAX_ITER = 30
 #: to NEWTON_RTOL), so their Newton stops at this residual × size.
 COARSE_RTOL = 1e-9
 #: Largest relative difference allowed between the special-point and the Jacobian solutions of
-#: a class III group: both are exact to rounding, which near a singular position (|sin| ~ 1e-2,
+#: a class III group, relative to the speed (acceleration) of the mechanism's fastest point at
+#: that position (:meth:`~plans.kinematics.state.Solution.rate_scale`): both are exact to rounding, which near a singular position (|sin| ~ 1e-2,
 #: the warning bound) amplifies eps to ~1e-12; 1e-9 leaves a thousandfold margin and still
 #: catches any wrong term (a missing Coriolis or normal term is of order 1).
 CROSS_CHECK_RTOL = 1e-9
 #: |ω_i − ω_j|·size ≤ INFINITY_RTOL·|relative velocity| puts an instantaneous centre at infinity
 #: (it would lie more than 1e9 mechanism sizes away).
 INFINITY_RTOL = 1e-9
+#: A link (or two links relative to each other) is at rest when |ω|·size and the (relative)
+#: speed of its first point are at most REST_RTOL × the speed of the mechanism's fastest point at
+#: that position (:meth:`~plans.kinematics.state.Solution.rate_scale`): it then has no
+#: instantaneous centre. At a stationary instant found by root-finding, rounding leaves
+#: |ω|·size ~ 1e-16 of that speed (~1e-12 near a singular position); a link that really moves at
+#: 1e-9 of it draws vectors of 1e-7 mm, nothing a plan can show. Koshel's AT_REST is as tight.
+REST_RTOL = 1e-9

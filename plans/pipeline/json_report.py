@@ -15,7 +15,7 @@ from ..constructions import Scales
 from ..constructions.forces import Lever
 from ..constructions.kinetostatics import lever_value
 from ..kinematics import Motion
-from ..kinematics.centres import Centres
+from ..kinematics.centres import Centre, Centres
 from ..kinetostatics import Forces
 from ..scene import Scene
 
@@ -61,8 +61,8 @@ def report(scene: Scene, motion: Motion, scales: Scales, forces: Forces | None =
         if motion.sines:
             pos["conditioning"] = {g: float(s[i]) for g, s in motion.sines.items()}
         if ic is not None:
-            pos["centres"] = {name: _xy(c.at(i)) for name, c in ic.absolute.items()}
-            pos["relative_centres"] = {f"{a}-{b}": _xy(c.at(i)) for (a, b), c in ic.relative.items()}
+            pos["centres"] = {name: _centre(c, i) for name, c in ic.absolute.items()}
+            pos["relative_centres"] = {f"{a}-{b}": _centre(c, i) for (a, b), c in ic.relative.items()}
         if special_pts:
             pos["special_points"] = {g: {p.name: _special(p, i) for p in pts} for g, pts in special_pts.items()}
         if forces is not None:
@@ -72,6 +72,16 @@ def report(scene: Scene, motion: Motion, scales: Scales, forces: Forces | None =
     for i, result in (levers or {}).items():
         data["positions"][i]["forces"].update(_lever_report(result, forces, i))
     return data
+
+
+#: What the report writes for a centre of two links at rest relative to each other (no centre).
+AT_REST = "at rest"
+
+
+def _centre(c: Centre, i: int) -> list[float] | str | None:
+    """A centre at position i: [x, y] (m), None at infinity, or ``AT_REST`` when the two links
+    do not move relative to each other (to REST_RTOL of the mechanism's speed)."""
+    return AT_REST if c.at_rest(i) else _xy(c.at(i))
 
 
 def report_text(data: dict) -> str:
