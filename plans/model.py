@@ -271,10 +271,6 @@ def _drive(scene: Scene, links: Mapping[str, Link], prismatics: tuple[Prismatic,
                          f"({', '.join(pivots)}) and cannot turn; drive a crank (one point listed in both "
                          f"links 0 and {d.link}) or a coupler (none)", key="drive.link")
     kind = DriveKind.ROTARY if pivots else DriveKind.COUPLER
-    if kind == DriveKind.COUPLER and scene.cycle is not None:
-        raise SceneError(f"positions = N divides a crank's full revolution, and the driving link {d.link} is a "
-                         "coupler (not pinned to the frame), which turns only as far as the chain lets it: list its "
-                         "angles (angle = [...]) instead, or drive a crank", key="drive.positions")
     pivot = pivots[0] if pivots else link.points[0]
     others = [p for p in link.points if p != pivot]
     if not others:

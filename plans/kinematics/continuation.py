@@ -83,8 +83,6 @@ def newton_walk(mech: Mechanism, g, eq: GroupEquations, states: dict[str, LinkSt
                 if result.converged:
                     break
             if not result.converged:
-                if getattr(g, "kind", "") == "driven" and prev is not None:
-                    raise failure(mech, g, walk, i, _limit_words(mech, grid[prev], grid[i]))
                 raise failure(mech, g, walk, i, "cannot assemble: Newton's method finds no position of the group's "
                               f"links (residual {result.residual:.1e} m), the group falls apart there")
             q[i] = result.q[0]
@@ -101,15 +99,6 @@ def newton_walk(mech: Mechanism, g, eq: GroupEquations, states: dict[str, LinkSt
             done[i] = True
             prev2, prev = prev, i
     return {name: LinkState(q[:, c + 2], q[:, c:c + 2]) for name, c in eq.col.items()}
-
-
-def _limit_words(mech, last: float, first_missing: float) -> str:
-    """Why a drive inside the chain stops: it has reached a limit (dead) position between the
-    last value the group followed and the first it could not."""
-    unit = "°" if mech.drive.kind.angular else " m"
-    lo, hi = sorted((last, first_missing))
-    return (f"the drive reaches a limit position between {lo:.6g} and {hi:.6g}{unit} (a dead position: the group "
-            f"cannot follow the drive beyond {last:.6g}{unit}); keep the drive's values on the sketch's side of it")
 
 
 def _predicted_move(eq: GroupEquations, q: np.ndarray, known: dict[str, LinkState], cols: list[int]) -> float:

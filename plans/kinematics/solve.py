@@ -21,7 +21,6 @@ import numpy as np
 
 from ..errors import AssemblyError, SingularPositionError
 from ..model import Mechanism
-from ..scene import DriveKind
 from ..structure import Structure
 from .kinds import GroupSolver, chain
 from .motion import Motion
@@ -82,8 +81,18 @@ def _reach(mech: Mechanism, structure: Structure, values: np.ndarray, pre: dict 
     except AssemblyError:
         if not mech.drive.kind.angular:
             raise
-    parts = _each_way(mech, structure, values) if mech.drive.kind == DriveKind.ROTARY else \
-        [_one_way(mech, structure, value) for value in values]
+    parts = []
+    for value in values:
+        one = np.array([value])
+        near = mech.drive.sketch_value + 360.0 * np.round((value - mech.drive.sketch_value) / 360.0)
+        try:
+            states, targets = _positions(mech, structure, one, start=near)
+        except AssemblyError as short_way:
+            try:
+                states, targets = _positions(mech, structure, one, start=near + (360.0 if near < value else -360.0))
+            except AssemblyError:
+                raise short_way from None
+        parts.append({name: s.take(targets) for name, s in states.items()})
     out = {name: LinkState(*(None if getattr(parts[0][name], f.name) is None
                              else np.concatenate([getattr(p[name], f.name) for p in parts])
                              for f in fields(LinkState))) for name in parts[0]}
@@ -91,80 +100,6 @@ def _reach(mech: Mechanism, structure: Structure, values: np.ndarray, pre: dict 
         if all("_cos_sin" in p[name].__dict__ for p in parts):
             state.seeded(*(np.concatenate([p[name]._cos_sin[i] for p in parts]) for i in (0, 1)))
     return out
-
-
-def _each_way(mech: Mechanism, structure: Structure, values: np.ndarray) -> list[dict[str, LinkState]]:
-    """Poses at each of ``values`` (one part per value, in order) for a crank that cannot reach
-    them all in one walk: every value mapped to within ±180° of the sketch, one short-way walk per
-    side of the sketch to as many values as it reaches (found by bisection on their distance from
-    the sketch), then one long-way walk per side to the rest, the same way. A value reachable
-    neither way is reported as its short way's failure. Each value's pose is the one the walk to
-    it alone finds (the same branch; Newton's root to rounding)."""
-    sketch = mech.drive.sketch_value
-    mapped = values - 360.0 * np.round((values - sketch) / 360.0)
-    found: dict[int, dict[str, LinkState]] = {}
-    failed: dict[int, AssemblyError] = {}
-    sides = [[k for k in np.argsort(mapped, kind="stable") if mapped[k] >= sketch],
-             [k for k in np.argsort(-mapped, kind="stable") if mapped[k] < sketch]]
-    for side in sides:
-        rest = _walk_prefix(mech, structure, [mapped[k] for k in side], side, found, failed)
-        if rest:                        # the long way round: the other side of the sketch
-            turn = -360.0 if mapped[rest[0]] >= sketch else 360.0
-            back = list(reversed(rest))     # nearest the sketch the long way first
-            left = _walk_prefix(mech, structure, [mapped[k] + turn for k in back], back, found, {})
-            if left:                    # reported as the nearest such value's short-way failure
-                k = min(left, key=lambda j: abs(mapped[j] - sketch))
-                _positions(mech, structure, np.array([mapped[k]]), start=sketch)
-                raise failed.get(k) or AssemblyError("cannot reach this angle either way round",
-                                                     angle=f"{values[k]:g}°")
-    crank = mech.drive.link
-    for k, part in found.items():      # the crank at the value as given (whole turns kept)
-        part[crank] = drive_states(mech, np.array([values[k]]))[crank]
-    return [found[k] for k in range(len(values))]
-
-
-def _one_way(mech: Mechanism, structure: Structure, value: float) -> dict[str, LinkState]:
-    """The pose at one ``value``, walked the short way round from the sketch moved by whole
-    turns towards it, else the long way; reported as the short way's failure."""
-    one = np.array([value])
-    near = mech.drive.sketch_value + 360.0 * np.round((value - mech.drive.sketch_value) / 360.0)
-    try:
-        states, targets = _positions(mech, structure, one, start=near)
-    except AssemblyError as short_way:
-        try:
-            states, targets = _positions(mech, structure, one, start=near + (360.0 if near < value else -360.0))
-        except AssemblyError:
-            raise short_way from None
-    return {name: s.take(targets) for name, s in states.items()}
-
-
-def _walk_prefix(mech: Mechanism, structure: Structure, targets: list[float], keys: list[int],
-                 found: dict[int, dict[str, LinkState]], failed: dict[int, AssemblyError]) -> list[int]:
-    """Walk from the sketch to the longest prefix of ``targets`` (ordered away from the sketch)
-    that one walk reaches; store each pose in ``found`` by its key, the error of the first value
-    beyond in ``failed``; return the keys not reached."""
-    def attempt(n: int) -> bool:
-        try:
-            states, at = _positions(mech, structure, np.array(targets[:n]), start=mech.drive.sketch_value)
-        except AssemblyError as exc:
-            failed[keys[n - 1]] = exc
-            return False
-        for k, t in zip(keys[:n], at):
-            found[k] = {name: s.take(np.array([t])) for name, s in states.items()}
-        return True
-
-    if not targets or attempt(len(targets)):
-        return []
-    lo, hi = 0, len(targets)            # lo values reach, hi do not
-    while hi - lo > 1:
-        mid = (lo + hi) // 2
-        if attempt(mid):
-            lo = mid
-        else:
-            hi = mid
-    if keys[hi - 1] not in failed:
-        attempt(hi)
-    return keys[lo:]
 
 
 def _positions(mech: Mechanism, structure: Structure, values: np.ndarray, start: float | None = None

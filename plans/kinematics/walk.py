@@ -142,10 +142,8 @@ def failure(mech: Mechanism, g, walk: Walk, i: int, why: str) -> AssemblyError:
     sweep = next(sw for sw in walk.sweeps if i in sw)
     target = requested_beyond(walk.requested, grid[i], grid[sweep[-1]] - grid[0])
     target = grid[i] if target is None else target
-    sketch = mech.drive.sketch_value
-    start_at = fmt(mech, sketch) if grid[0] == sketch else \
-        f"{fmt(mech, sketch)}, taken as {fmt(mech, grid[0])} to be near the positions"
-    where = "" if grid[i] == target else f" (the walk from the sketch at {start_at} fails at {fmt(mech, grid[i])})"
+    where = "" if grid[i] == target else (f" (the walk from the sketch at {fmt(mech, grid[0])} "
+                                          f"fails at {fmt(mech, grid[i])})")
     return AssemblyError(f"{why}{where}; check the lengths or the requested positions",
                          group=group_label(g), angle=fmt(mech, target))
 

@@ -245,13 +245,12 @@ class _Solver:
         bad = ~(cond < SINGULAR_COND)
         if np.any(bad):
             i = int(np.argmax(bad))
-            unit = "°" if self.motion.mechanism.drive.kind.angular else " m"
             value = self.motion.values[i]
             if balance is not None and balance.kind == "force" and balance.given:
-                raise SceneError(f"the balancing force's line cannot balance the mechanism at {value:g}{unit} (it has no "
+                raise SceneError(f"the balancing force's line cannot balance the mechanism at {value:g} (it has no "
                                  "arm about the driving link's motion there); choose another angle or point",
                                  key="balance.angle")
-            raise PlansError(f"group {name}: its equilibrium equations are singular at {value:g}{unit} (condition "
+            raise PlansError(f"group {name}: its equilibrium equations are singular at {value:g} (condition "
                              f"{cond[i]:.2e}); the reactions have no unique solution there")
         sol = np.linalg.solve(a, b[..., None])[..., 0]
         # one step of iterative refinement: an ill-conditioned group (a cylinder's, cond ~1e5)

@@ -12,7 +12,6 @@ headline figures (``summary``) and charts. Nothing here prints or writes files.
 6. :func:`numba_comparison` (:mod:`.numba_path`) — crank-slider full kinematics: plans vs pylinkage's numba and
    pure-Python paths
 7. :func:`class_cost` (:mod:`.group_cost`) — class III and IV groups: cost per position against the crank-slider
-8. :func:`partial_turn` (:mod:`.partial_turn`) — a crank that cannot turn fully: one walk per side, not per angle
 
 What several sections share lives in :mod:`.common` (table, configuration, scenes, timing) and
 :mod:`.pylinkage_model` (a scene as a pylinkage Linkage). This package must not import
@@ -26,7 +25,6 @@ from typing import Callable
 from .common import FULL, QUICK, Column, Config, Section
 from .group_cost import CLASS_COST_TARGET, class_cost
 from .numba_path import AGREEMENT_TARGET, NUMBA_TARGET, numba_comparison
-from .partial_turn import partial_turn
 from .peer import peer_comparison
 from .precision import drawing_precision
 from .rates import THROUGHPUT_TARGET, render_rate, throughput
@@ -35,9 +33,9 @@ from .solver import SOLVER_CASES, SolverCase, solver_tolerance
 
 __all__ = ["Column", "Section", "Config", "FULL", "QUICK", "SECTIONS", "drawing_precision", "solver_tolerance",
            "cycle_resolution", "throughput", "render_rate", "peer_comparison", "THROUGHPUT_TARGET", "SolverCase",
-           "SOLVER_CASES", "numba_comparison", "class_cost", "NUMBA_TARGET", "AGREEMENT_TARGET", "CLASS_COST_TARGET", "partial_turn"]
+           "SOLVER_CASES", "numba_comparison", "class_cost", "NUMBA_TARGET", "AGREEMENT_TARGET", "CLASS_COST_TARGET"]
 
 #: Every section in the order ``plans bench`` runs and prints them.
 SECTIONS: tuple[Callable[[Config], Section], ...] = (drawing_precision, solver_tolerance, cycle_resolution,
                                                      throughput, render_rate, peer_comparison,
-                                                     numba_comparison, class_cost, partial_turn)
+                                                     numba_comparison, class_cost)
