@@ -71,22 +71,27 @@ class StructureError(SceneError):
 
 
 class AssemblyError(PlansError, ValueError):
-    """A group cannot be assembled, or has no unique solution, at a requested position."""
+    """A group cannot be assembled, or has no unique solution, at a requested position.
+
+    ``at`` is the drive's value (degrees or metres) where a walk from the sketch stopped, when
+    one did: the solver reaches the values beyond it another way (a crank the long way round).
+    """
 
     def __init__(self, message: str, *, group: str | None = None, angle: str | None = None,
-                 file: str | None = None):
+                 file: str | None = None, at: float | None = None):
         super().__init__(message)
         self.message = message
         self.group = group
         self.angle = angle
         self.file = file
+        self.at = at
 
     def __str__(self) -> str:
         parts = [p for p in (self.file, self.group, None if self.angle is None else f"at {self.angle}") if p]
         return one_line(f"{', '.join(parts)}: {self.message}" if parts else self.message)
 
     def in_file(self, file: str) -> "AssemblyError":
-        return type(self)(self.message, group=self.group, angle=self.angle, file=file)
+        return type(self)(self.message, group=self.group, angle=self.angle, file=file, at=self.at)
 
 
 class SingularPositionError(AssemblyError):

@@ -22,7 +22,7 @@ from plans.cli import main
 SVG = "{http://www.w3.org/2000/svg}"
 TITLES = ("1. Drawing precision", "2. Solver tolerance", "3. Cycle resolution", "4. Throughput",
           "4b. Plans rendered per second", "5. Peer comparison", "6. Crank-slider full kinematics",
-          "7. Class III / IV cost per position")
+          "7. Class III / IV cost per position", "8. A crank that cannot turn fully")
 
 
 def _strict(text: str) -> dict:
@@ -231,6 +231,16 @@ def test_class_cost_is_per_position_against_the_crank_slider(bench):
     assert sec["summary"]["target"] == CLASS_COST_TARGET
     assert set(sec["summary"]["ratios"]) == {"class3_six_link", "class4_six_link"}
     assert sum(h.startswith("class ") for h in report["headlines"]) == 2
+
+
+def test_limited_walk_times_one_call_against_each_angle_alone(bench):
+    _, report, _ = bench
+    (r,) = rows(report, "limited_walk")
+    assert r["positions"] == QUICK.limited_positions and r["alone_timed_on"] == QUICK.limited_alone
+    assert _positive(r["call_s"]) and math.isclose(r["per_s"], r["positions"] / r["call_s"], rel_tol=1e-9)
+    assert _positive(r["alone_per_s"]) and math.isclose(r["ratio"], r["per_s"] / r["alone_per_s"], rel_tol=1e-9)
+    assert 0.0 <= r["max_rel_difference"] <= 1e-12
+    assert any(h.startswith("a crank that cannot turn fully") for h in report["headlines"])
 
 
 def test_chart_is_deterministic_and_drops_non_positive_values_on_log_axes():

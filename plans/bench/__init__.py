@@ -3,8 +3,9 @@
 Sections (see :mod:`plans.bench.sections`): drawing precision, solver tolerance, cycle
 resolution, throughput (vectorised vs per-angle loop, plans rendered per second), a
 comparison with the peer library pylinkage (skipped when it is not installed), the
-crank-slider's full kinematics against pylinkage's numba and pure-Python paths, and the cost
-per position of class III/IV groups against the crank-slider. Each section
+crank-slider's full kinematics against pylinkage's numba and pure-Python paths, the cost
+per position of class III/IV groups against the crank-slider, and a crank that cannot turn
+fully asked for angles on both sides of its sketch. Each section
 prints a table; :func:`run` also writes ``bench.json`` (every figure, the machine, the run
 time) and one SVG chart per figure into the output folder.
 """
@@ -124,6 +125,12 @@ def _headlines(sections: dict[str, Section]) -> list[str]:
                 f"NOT met, over by a factor {r[5] / CLASS_COST_TARGET:.1f}"
             lines.append(f"class {r[1]} ({r[0]}) at {r[3]} positions a turn: {r[5]:.1f}× the crank-slider per "
                          f"position (target ≤ {CLASS_COST_TARGET:g}×: {verdict})")
+    w = sections.get("limited_walk")
+    if w and not w.skipped:
+        for r in w.rows:
+            lines.append(f"a crank that cannot turn fully ({r[0]}), {r[1]} angles on both sides of its sketch: "
+                         f"{r[3]:,.0f} positions/s in one call, {r[6]:.1f}× walking each angle alone "
+                         f"(difference {r[7]:.0e})")
     return lines
 
 

@@ -10,8 +10,11 @@ linear predictor), which is also the one that reports a failure. A pose vector h
 
 from __future__ import annotations
 
+from typing import Callable
+
 import numpy as np
 
+from ..errors import AssemblyError
 from ..model import Mechanism
 from .compiled import CompiledGroup
 from .compiled_walk import walk as compiled_walk
@@ -20,7 +23,11 @@ from .state import LinkState
 from .tolerances import JUMP_RATIO
 from .walk import Walk, failure, step
 
-__all__ = ["continue_group", "fast_walk", "newton_walk"]
+__all__ = ["continue_group", "fast_walk", "newton_walk", "Stop"]
+
+#: What a walk that fails at step i after step ``prev`` (its pose q) reports instead of the
+#: general message, or None: ``stop(i, prev, q)``.
+Stop = Callable[[int, int, np.ndarray], "AssemblyError | None"]
 
 
 def continue_group(mech: Mechanism, g, eq: GroupEquations, states: dict[str, LinkState], walk: Walk
@@ -56,10 +63,12 @@ def fast_walk(mech: Mechanism, eq: GroupEquations, states: dict[str, LinkState],
     return q, group
 
 
-def newton_walk(mech: Mechanism, g, eq: GroupEquations, states: dict[str, LinkState], walk: Walk
-                ) -> dict[str, LinkState]:
+def newton_walk(mech: Mechanism, g, eq: GroupEquations, states: dict[str, LinkState], walk: Walk,
+                stop: Stop | None = None) -> dict[str, LinkState]:
     """Poses of group ``g`` (its equations ``eq``) along the walk: Newton at every step from the
-    previous step (linear predictor), starting at the sketch, where every pose is the identity."""
+    previous step (linear predictor), starting at the sketch, where every pose is the identity.
+    Where a step fails, ``stop`` (when given) may say why instead of the general message: it
+    is called with the failing step's index, the step before and its pose."""
     grid = walk.grid
     q = np.zeros((len(grid), 3 * len(eq.links)))
     done = np.zeros(len(grid), dtype=bool)
@@ -83,8 +92,9 @@ def newton_walk(mech: Mechanism, g, eq: GroupEquations, states: dict[str, LinkSt
                 if result.converged:
                     break
             if not result.converged:
-                raise failure(mech, g, walk, i, "cannot assemble: Newton's method finds no position of the group's "
-                              f"links (residual {result.residual:.1e} m), the group falls apart there")
+                raise _why(stop, i, prev, q) or failure(
+                    mech, g, walk, i, "cannot assemble: Newton's method finds no position of the group's "
+                    f"links (residual {result.residual:.1e} m), the group falls apart there")
             q[i] = result.q[0]
             if prev is not None:
                 moved = np.max(np.abs(q[i, cols] - q[prev, cols]))
@@ -94,11 +104,17 @@ def newton_walk(mech: Mechanism, g, eq: GroupEquations, states: dict[str, LinkSt
                     * abs(grid[i] - grid[prev]) / abs(grid[prev] - grid[prev2]) if prev2 is not None else \
                     _predicted_move(eq.at(i), q[prev], known(i), cols)
                 if moved > 0.01 * mech.size and moved > JUMP_RATIO * before:
-                    raise failure(mech, g, walk, i, "the assembly branch would jump between neighbouring steps (a "
-                                  "limit position or a singular position lies there)")
+                    raise _why(stop, i, prev, q) or failure(
+                        mech, g, walk, i, "the assembly branch would jump between neighbouring steps (a limit "
+                        "position or a singular position lies there)")
             done[i] = True
             prev2, prev = prev, i
     return {name: LinkState(q[:, c + 2], q[:, c:c + 2]) for name, c in eq.col.items()}
+
+
+def _why(stop: Stop | None, i: int, prev: int | None, q: np.ndarray) -> AssemblyError | None:
+    """``stop``'s error for a walk failing at step i after step ``prev`` (None: the general one)."""
+    return None if stop is None or prev is None else stop(i, prev, q[prev].copy())
 
 
 def _predicted_move(eq: GroupEquations, q: np.ndarray, known: dict[str, LinkState], cols: list[int]) -> float:

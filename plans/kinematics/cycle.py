@@ -18,7 +18,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..errors import SceneError
+from ..errors import AssemblyError, SceneError
 from ..model import Mechanism
 from ..scene import FRAME
 from ..structure import Structure
@@ -123,6 +123,18 @@ def solve_cycle(mech: Mechanism, structure: Structure, *, positions: int, start:
     is smallest. ``order`` is the order of the N-position motion, ``dense_order`` that of the
     dense one (each ≥ 1 when extremes are needed). Unreachable or singular positions raise the
     solver's errors, naming the angle."""
+    try:
+        return _solve_cycle(mech, structure, positions=positions, start=start, output=output, order=order,
+                            dense_order=dense_order)
+    except AssemblyError as e:
+        raise type(e)(f"{e.message} — a cycle turns link {mech.drive.link} through one revolution, so it needs a "
+                      f"crank that turns fully: list the angles it reaches instead of positions = {positions}",
+                      group=e.group, angle=e.angle, at=e.at) from None
+
+
+def _solve_cycle(mech: Mechanism, structure: Structure, *, positions: int, start: float | None, output: str,
+                 order: int, dense_order: int) -> Cycle:
+    """:func:`solve_cycle`, whose errors it words for a cycle."""
     every = max(1, math.ceil(DENSE_MIN / (2 * positions)))
     extremes = _extremes(mech, structure, output, mech.drive.sketch_value if start is None else start)
     if start is None:

@@ -68,37 +68,98 @@ def analyse(mech: Mechanism, structure: Structure, values: np.ndarray | None = N
 def _reach(mech: Mechanism, structure: Structure, values: np.ndarray, pre: dict | None = None,
            solvers: list[GroupSolver] | None = None) -> dict[str, LinkState]:
     """Poses at ``values``: all in one walk from the sketch (moved by whole turns towards the
-    values' median); when that walk fails, each angle alone, walked the short way round and
-    then, if that passes a limit or singular position, the long way (a crank that cannot turn
-    fully reaches an angle only from one side). An angle reachable neither way is reported
-    as the short way's failure."""
+    values' median); when that walk fails, each angle as if walked alone (:func:`_each_way`):
+    the short way round and then, if that passes a limit or singular position, the long way
+    (a crank that cannot turn fully reaches an angle only from one side). An angle reachable
+    neither way is reported as the short way's failure."""
     fast = _direct(mech, structure, values, pre, solvers)
     if fast is not None:
         return fast
     try:
         states, targets = _positions(mech, structure, values)
         return {name: s.take(targets) for name, s in states.items()}
-    except AssemblyError:
+    except AssemblyError as e:
         if not mech.drive.kind.angular:
             raise
-    parts = []
-    for value in values:
-        one = np.array([value])
-        near = mech.drive.sketch_value + 360.0 * np.round((value - mech.drive.sketch_value) / 360.0)
+        joint = e
+    return _each_way(mech, structure, values, (start(mech, values), joint))
+
+
+def _each_way(mech: Mechanism, structure: Structure, values: np.ndarray,
+              tried: tuple[float, AssemblyError]) -> dict[str, LinkState]:
+    """Poses at the crank angles ``values``, each reached as if walked alone: from the sketch
+    moved by whole turns to within ±180° of it (the short way round), else from one turn
+    further (the long way). The angles that start alike are walked together, in one walk
+    per start (:func:`_walk_from`); a walk that stops passes the angles beyond where it
+    stopped on to the long way. An angle the long way does not reach either is reported
+    with the short way's error, walked alone (the first such angle in the order given).
+    ``tried``: the start of the walk to all the values that failed, and its error."""
+    sketch = mech.drive.sketch_value
+    near = sketch + 360.0 * np.round((values - sketch) / 360.0)
+    parts: list[tuple[np.ndarray, dict[str, LinkState]]] = []
+    short, short_errors = _walk_from(mech, structure, values, near, np.arange(len(values)), parts, tried)
+    far = near[short] + np.where(near[short] < values[short], 360.0, -360.0)
+    neither, long_errors = _walk_from(mech, structure, values[short], far, short, parts)
+    for i in np.sort(neither):
+        if i in short_errors and i in long_errors:    # each way walked to this angle alone
+            raise short_errors[i]
+        one = values[i:i + 1]
         try:
-            states, targets = _positions(mech, structure, one, start=near)
+            states, targets = _positions(mech, structure, one, start=near[i])
         except AssemblyError as short_way:
             try:
-                states, targets = _positions(mech, structure, one, start=near + (360.0 if near < value else -360.0))
+                states, targets = _positions(mech, structure, one, start=near[i] + (360.0 if near[i] < one[0]
+                                                                                    else -360.0))
             except AssemblyError:
                 raise short_way from None
-        parts.append({name: s.take(targets) for name, s in states.items()})
-    out = {name: LinkState(*(None if getattr(parts[0][name], f.name) is None
-                             else np.concatenate([getattr(p[name], f.name) for p in parts])
-                             for f in fields(LinkState))) for name in parts[0]}
-    for name, state in out.items():   # cos θ, sin θ as solved, where every part knows them
-        if all("_cos_sin" in p[name].__dict__ for p in parts):
-            state.seeded(*(np.concatenate([p[name]._cos_sin[i] for p in parts]) for i in (0, 1)))
+        parts.append((np.array([i]), {name: s.take(targets) for name, s in states.items()}))
+    return _gather(parts)
+
+
+def _walk_from(mech: Mechanism, structure: Structure, values: np.ndarray, starts: np.ndarray, index: np.ndarray,
+               parts: list, tried: tuple[float, AssemblyError] | None = None
+               ) -> tuple[np.ndarray, dict[int, AssemblyError]]:
+    """Walk to ``values`` from their ``starts`` (crank angles, whole turns from the sketch),
+    one walk per start, appending (the values' ``index``, their states) to ``parts``. A walk
+    that stops (its error's ``at``) is walked again without the values at or beyond where it
+    stopped on that side of its start. Returns the ``index`` of the values left behind, and
+    the error of each that a walk to it alone left behind. ``tried``: a walk to all the values
+    from one start that has failed already, and its error (not walked again)."""
+    left: list[np.ndarray] = []
+    alone: dict[int, AssemblyError] = {}
+    for first in np.unique(starts):
+        mine = np.flatnonzero(starts == first)
+        while mine.size:
+            try:
+                if tried is not None and first == tried[0] and mine.size == len(values):
+                    raise tried[1]
+                states, targets = _positions(mech, structure, values[mine], start=float(first))
+            except AssemblyError as e:
+                beyond = np.ones(mine.size, dtype=bool) if e.at is None or e.at == first else \
+                    (values[mine] - e.at) * np.sign(e.at - first) >= 0
+                if mine.size == 1:
+                    alone[int(index[mine[0]])] = e
+                if not beyond.any():
+                    beyond[:] = True
+                left.append(mine[beyond])
+                mine = mine[~beyond]
+                continue
+            parts.append((index[mine], {name: s.take(targets) for name, s in states.items()}))
+            break
+    return (index[np.concatenate(left)] if left else np.empty(0, dtype=int)), alone
+
+
+def _gather(parts: list[tuple[np.ndarray, dict[str, LinkState]]]) -> dict[str, LinkState]:
+    """The states of ``parts`` (each the positions it holds, by index, and its states there)
+    put together in the order of the values (cos θ, sin θ too where every part knows them)."""
+    order = np.argsort(np.concatenate([index for index, _ in parts]), kind="stable")
+    names = parts[0][1]
+    out = {name: LinkState(*(None if getattr(parts[0][1][name], f.name) is None
+                             else np.concatenate([getattr(p[name], f.name) for _, p in parts])[order]
+                             for f in fields(LinkState))) for name in names}
+    for name, state in out.items():
+        if all("_cos_sin" in p[name].__dict__ for _, p in parts):
+            state.seeded(*(np.concatenate([p[name]._cos_sin[k] for _, p in parts])[order] for k in (0, 1)))
     return out
 
 

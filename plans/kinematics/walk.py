@@ -23,7 +23,7 @@ from .state import LinkState, rotate
 from .tolerances import SINGULAR_SIN
 
 __all__ = ["Walk", "walk_to", "step", "start", "drive_states", "set_drive_rates", "check_crossing", "failure",
-           "group_label", "fmt", "requested_beyond"]
+           "limit_reached", "group_label", "fmt", "requested_beyond"]
 
 
 @dataclass(frozen=True)
@@ -128,11 +128,12 @@ def check_crossing(mech: Mechanism, g, reason: str, sin: np.ndarray, walk: Walk)
         a, b = grid[sweep[flips[0]]], grid[sweep[flips[0] + 1]]
         target = requested_beyond(walk.requested, b, b - a)
         if target is not None:
+            turns = _turns(mech, walk)
             raise AssemblyError(
-                f"the walk from the sketch passes a singular position between {fmt(mech, a)} and {fmt(mech, b)} "
-                f"({reason}); positions beyond it cannot be reached without "
+                f"the walk from the sketch passes a singular position between {fmt(mech, a - turns)} and "
+                f"{fmt(mech, b - turns)} ({reason}); positions beyond it cannot be reached without "
                 "ambiguity — request positions on the sketch's side or redraw the sketch there",
-                group=group_label(g), angle=fmt(mech, target))
+                group=group_label(g), angle=fmt(mech, target), at=float(b))
 
 
 def failure(mech: Mechanism, g, walk: Walk, i: int, why: str) -> AssemblyError:
@@ -142,10 +143,38 @@ def failure(mech: Mechanism, g, walk: Walk, i: int, why: str) -> AssemblyError:
     sweep = next(sw for sw in walk.sweeps if i in sw)
     target = requested_beyond(walk.requested, grid[i], grid[sweep[-1]] - grid[0])
     target = grid[i] if target is None else target
-    where = "" if grid[i] == target else (f" (the walk from the sketch at {fmt(mech, grid[0])} "
-                                          f"fails at {fmt(mech, grid[i])})")
+    turns = _turns(mech, walk)
+    where = "" if grid[i] == target else (f" (the walk from the sketch at {fmt(mech, grid[0] - turns)} "
+                                          f"fails at {fmt(mech, grid[i] - turns)})")
     return AssemblyError(f"{why}{where}; check the lengths or the requested positions",
-                         group=group_label(g), angle=fmt(mech, target))
+                         group=group_label(g), angle=fmt(mech, target), at=float(grid[i]))
+
+
+def _turns(mech: Mechanism, walk: Walk) -> float:
+    """The whole turns (degrees) a crank's walk starts away from the sketch (0 for a linear
+    drive): messages print the walk's angles in the sketch's own turn, as the user drew it
+    (the walk from 90°, not from 450°, fails at 7°)."""
+    if not mech.drive.kind.angular:
+        return 0.0
+    return 360.0 * round((float(walk.grid[0]) - mech.drive.sketch_value) / 360.0)
+
+
+def limit_reached(mech: Mechanism, g, walk: Walk, i: int, limit: float, detail: str = "") -> AssemblyError:
+    """The error of a drive inside the chain (group ``g``, its original mechanism) whose walk
+    fails at grid position i because the drive has reached a limit position at drive value
+    ``limit`` (a dead position of the drive: the coupler's angle or the cylinder's stroke is
+    extreme there); ``detail`` adds what else the user measures there (the cylinder's length)."""
+    grid = walk.grid
+    sweep = next(sw for sw in walk.sweeps if i in sw)
+    target = requested_beyond(walk.requested, grid[i], grid[sweep[-1]] - grid[0])
+    target = grid[i] if target is None else target
+    turns = _turns(mech, walk)
+    what = f"link {mech.drive.link}'s angle" if mech.drive.kind.angular else "the stroke from the sketch"
+    return AssemblyError(
+        f"the drive has reached a limit position at {fmt(mech, limit - turns)} ({what}{detail}): the original "
+        "mechanism is at a dead position there and its links cannot follow the drive further from the sketch "
+        f"({fmt(mech, grid[0] - turns)}); request positions on the sketch's side of the limit",
+        group=group_label(g), angle=fmt(mech, target), at=float(grid[i]))
 
 
 def group_label(g) -> str:

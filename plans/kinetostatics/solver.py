@@ -13,6 +13,7 @@ import numpy as np
 from ..errors import PlansError, SceneError
 from ..kinematics import Motion
 from ..kinematics.state import J, cross
+from ..kinematics.walk import fmt
 from ..scene import Scene
 from ..structure import Group
 from .balance import _BalanceSpec
@@ -245,12 +246,12 @@ class _Solver:
         bad = ~(cond < SINGULAR_COND)
         if np.any(bad):
             i = int(np.argmax(bad))
-            value = self.motion.values[i]
+            value = fmt(self.motion.mechanism, float(self.motion.values[i]))     # 30° or 0.02 m
             if balance is not None and balance.kind == "force" and balance.given:
-                raise SceneError(f"the balancing force's line cannot balance the mechanism at {value:g} (it has no "
+                raise SceneError(f"the balancing force's line cannot balance the mechanism at {value} (it has no "
                                  "arm about the driving link's motion there); choose another angle or point",
                                  key="balance.angle")
-            raise PlansError(f"group {name}: its equilibrium equations are singular at {value:g} (condition "
+            raise PlansError(f"group {name}: its equilibrium equations are singular at {value} (condition "
                              f"{cond[i]:.2e}); the reactions have no unique solution there")
         sol = np.linalg.solve(a, b[..., None])[..., 0]
         # one step of iterative refinement: an ill-conditioned group (a cylinder's, cond ~1e5)

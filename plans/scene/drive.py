@@ -62,6 +62,11 @@ def read_drive(table: Mapping[str, Any], links: Mapping[str, Any], sliders: tupl
                                       "displacement, velocity)", "link, along, displacement, velocity, acceleration",
                                       fix="positions = N divides one revolution of a crank; list the drive's "
                                       "values instead"), key=f"drive.{key}")
+        key = "positions" if "positions" in cycle else "start"
+        if not set(links[link]) & set(links[FRAME]):
+            raise SceneError(f"a cycle turns a crank through one revolution, and link {link} is a coupler (no point "
+                             "on the frame), whose angle need not turn fully: a cycle needs a crank (a drive that "
+                             f"turns fully); list the coupler's angles instead of {key}", key=f"drive.{key}")
         count = cycle_positions(cycle)
         if isinstance(table.get(pos_key), list):
             raise SceneError("positions = N gives N equal steps from one first angle; give angle as one number "

@@ -12,6 +12,8 @@ headline figures (``summary``) and charts. Nothing here prints or writes files.
 6. :func:`numba_comparison` (:mod:`.numba_path`) — crank-slider full kinematics: plans vs pylinkage's numba and
    pure-Python paths
 7. :func:`class_cost` (:mod:`.group_cost`) — class III and IV groups: cost per position against the crank-slider
+8. :func:`limited_walk` (:mod:`.limited`) — a crank that cannot turn fully, angles on both sides of its sketch:
+   one call against each angle walked alone
 
 What several sections share lives in :mod:`.common` (table, configuration, scenes, timing) and
 :mod:`.pylinkage_model` (a scene as a pylinkage Linkage). This package must not import
@@ -24,6 +26,7 @@ from typing import Callable
 
 from .common import FULL, QUICK, Column, Config, Section
 from .group_cost import CLASS_COST_TARGET, class_cost
+from .limited import limited_walk
 from .numba_path import AGREEMENT_TARGET, NUMBA_TARGET, numba_comparison
 from .peer import peer_comparison
 from .precision import drawing_precision
@@ -33,9 +36,10 @@ from .solver import SOLVER_CASES, SolverCase, solver_tolerance
 
 __all__ = ["Column", "Section", "Config", "FULL", "QUICK", "SECTIONS", "drawing_precision", "solver_tolerance",
            "cycle_resolution", "throughput", "render_rate", "peer_comparison", "THROUGHPUT_TARGET", "SolverCase",
-           "SOLVER_CASES", "numba_comparison", "class_cost", "NUMBA_TARGET", "AGREEMENT_TARGET", "CLASS_COST_TARGET"]
+           "SOLVER_CASES", "numba_comparison", "class_cost", "limited_walk", "NUMBA_TARGET", "AGREEMENT_TARGET",
+           "CLASS_COST_TARGET"]
 
 #: Every section in the order ``plans bench`` runs and prints them.
 SECTIONS: tuple[Callable[[Config], Section], ...] = (drawing_precision, solver_tolerance, cycle_resolution,
                                                      throughput, render_rate, peer_comparison,
-                                                     numba_comparison, class_cost)
+                                                     numba_comparison, class_cost, limited_walk)

@@ -81,6 +81,8 @@ class Config:
     numba_positions: tuple[int, ...]           # crank-slider: plans vs pylinkage's numba and pure-Python paths
     class_positions: int                       # class III/IV vs crank-slider cost per position (72 a turn)
     class_large_positions: int                 # … and the same at this many positions, for comparison
+    limited_positions: int                     # a crank that cannot turn fully, angles on both sides of the sketch
+    limited_alone: int                         # … each angle walked alone, timed on this many of them
 
 
 FULL = Config("full", precision_scenes=(), decimals=(1, 2, 3, 4, 5, 6),
@@ -88,11 +90,12 @@ FULL = Config("full", precision_scenes=(), decimals=(1, 2, 3, 4, 5, 6),
               resolutions=(8, 12, 24, 36, 72, 180, 360, 720, 3600), throughput_positions=3600, loop_positions=360,
               batch_sizes=(1, 10, 100, 360, 1000, 3600), render_scenes=("crank_slider_central", "six_link_press"),
               render_repeat=2, peer_positions=360, repeat=7, numba_positions=(3600, 100_000), class_positions=72,
-              class_large_positions=3600)
+              class_large_positions=3600, limited_positions=360, limited_alone=36)
 QUICK = Config("quick", precision_scenes=("crank_slider_central",), decimals=(2, 4), tolerances=(1e-3, 1e-8, 1e-12),
                solver_positions=36, resolutions=(12, 36, 360), throughput_positions=360, loop_positions=12,
                batch_sizes=(10, 360), render_scenes=("crank_slider_central",), render_repeat=1, peer_positions=36,
-               repeat=1, numba_positions=(36, 360), class_positions=72, class_large_positions=360)
+               repeat=1, numba_positions=(36, 360), class_positions=72, class_large_positions=360,
+               limited_positions=36, limited_alone=6)
 
 
 def example_path(stem: str) -> Path:
