@@ -107,6 +107,7 @@ def _lever_at(motion: Motion, forces: Forces, i: int, mu_v: float, path: str) ->
     scale = reach / abs(result.unit_moment) if result.unit_moment else 0.0
     if abs(result.result - float(forces.balance.value[i])) > LEVER_RTOL * max(scale, abs(result.result)) \
             + LEVER_ATOL:
-        raise PlansError(f"{path}: Zhukovsky's lever gives {result.result:.12g} at {motion.values[i]:g}, the "
+        unit = "°" if motion.mechanism.drive.kind.angular else " m"
+        raise PlansError(f"{path}: Zhukovsky's lever gives {result.result:.12g} at {motion.values[i]:g}{unit}, the "
                          f"group-by-group analysis {float(forces.balance.value[i]):.12g} (please report this scene)")
     return result

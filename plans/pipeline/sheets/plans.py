@@ -38,7 +38,8 @@ def plan_sheets(page: Page, scales: Scales, rest: tuple[bool, bool], path: str) 
         plan = builder(motion, i, mu)
         failures = check_plan(plan) + similarity_failures(motion, plan, i)
         if failures:
-            raise PlansError(f"{path}: {kind} plan at {motion.values[i]:g} failed its geometric check: "
+            unit = "°" if motion.mechanism.drive.kind.angular else " m"
+            raise PlansError(f"{path}: {kind} plan at {motion.values[i]:g}{unit} failed its geometric check: "
                              f"{failures[0]} (please report this scene)")
         sym = "μ_V" if kind == "velocity" else "μ_a"
         files[page.file(kind)] = draw_plan(plan, heading, ident=page.ident(kind), style=page.style,
