@@ -28,7 +28,7 @@ from dataclasses import dataclass
 from ..gears import GearAnalysis
 from .scales import standard_scale
 
-__all__ = ["GearSheet", "WheelMark", "ShaftMark", "CarrierMark", "LinkLine", "PitchVector", "OmegaSegment", "SpeedRow",
+__all__ = ["GearSheet", "WheelMark", "ShaftMark", "CarrierMark", "LinkLine", "PitchVector", "OmegaSegment", "SpeedRow", "EndView",
            "gear_sheet", "PLANE_MM", "H_CHOICES_MM"]
 
 #: Distance between the planes of meshes along the shafts in the side view, mm.
@@ -39,6 +39,11 @@ GAP_MM = 40.0
 H_CHOICES_MM = (60.0, 50.0, 40.0, 30.0, 25.0, 20.0, 15.0, 10.0)
 #: Longest ω segment allowed, mm (the picture's half width).
 OMEGA_MAX_MM = 80.0
+#: The end view's largest diameter, mm: drawn at the side view's scale, or at 1/2, 1/2.5, 1/4 … of it.
+END_MAX_MM = 100.0
+END_FACTORS = (1.0, 2.0, 2.5, 4.0, 5.0, 8.0, 10.0)
+#: The end view stands this far left of the side view (its bearings and carrier included), mm.
+END_GAP_MM, TICK_ROOM_MM = 30.0, 14.0
 #: The side view's height is kept within this, mm; the velocity picture's half width within this.
 SIDE_MAX_MM, VELOCITY_MAX_MM = 200.0, 110.0
 
@@ -119,6 +124,19 @@ class OmegaSegment:
 
 
 @dataclass(frozen=True)
+class EndView:
+    """The planetary part seen along the axis, to ``mu`` (m/mm: the side view's μl, or twice it
+    when the view would be wider than END_MAX_MM):
+    ``circles`` (wheel name, centre mm, pitch radius mm, ring gear?) of the central wheels and of
+    every planet (``planets`` equally spaced copies), and each carrier's ``arms`` (mm)."""
+
+    mu: float
+    centre: tuple[float, float]
+    circles: tuple[tuple[str, tuple[float, float], float, bool], ...]
+    arms: tuple[tuple[tuple[float, float], tuple[float, float]], ...]
+
+
+@dataclass(frozen=True)
 class SpeedRow:
     """One row of the sheet's speed table: a wheel (``teeth``) or a carrier (None)."""
 
@@ -146,6 +164,7 @@ class GearSheet:
     omega: tuple[OmegaSegment, ...]
     nominal: bool                       # drawn with a nominal module (no module given)
     table: tuple[SpeedRow, ...] = ()
+    end: EndView | None = None          # the planets seen along the axis (trains with carriers)
 
     @property
     def mu_omega(self) -> float:
@@ -294,8 +313,44 @@ def gear_sheet(analysis: GearAnalysis) -> GearSheet:
                      for link in s.links if not link.fixed)
     return GearSheet(mu_l=mu_l, mu_v=mu_v, h=h, wheels=wheels, shafts=tuple(shafts), carriers=tuple(carriers),
                      axis_x=axis_x, lines=tuple(lines), pitch=tuple(pitch), pole=pole, omega=segments,
-                     nominal=nominal, table=tuple(SpeedRow(n, train.wheel(n).teeth if n not in train.carriers else None,
+                     nominal=nominal, end=_end_view(analysis, radius, height, mu_l, wheels),
+                     table=tuple(SpeedRow(n, train.wheel(n).teeth if n not in train.carriers else None,
                                                            float(speeds.rpm[n]), speeds.omega(n)) for n in train.names))
+
+
+def _end_view(analysis: GearAnalysis, radius: dict[str, float], height: dict[str, float], mu_l: float,
+              wheels: tuple[WheelMark, ...]) -> EndView | None:
+    """The end view left of the side view (see :class:`EndView`), or None without carriers."""
+    s = analysis.speeds.structure
+    train = s.train
+    if not train.carriers:
+        return None
+    planet_wheels = {w.name for w in train.wheels if w.on is not None}
+    central = [w for w in train.wheels if w.on is None and any(
+        (a == w.name and b in planet_wheels) or (b == w.name and a in planet_wheels) for a, b in train.meshes)]
+    reach_m = max([radius[w.name] for w in central] + [height[s.link_of(w.name).name] + radius[w.name]
+                                                        for w in train.wheels if w.on is not None])
+    factor = next((f for f in END_FACTORS if reach_m / (f * mu_l) <= END_MAX_MM / 2), END_FACTORS[-1])
+    mu = factor * mu_l                  # the side view's scale, or a simple fraction of it
+    mm = 1.0 / mu
+    reach = reach_m * mm
+    left = min(x for x in [w.x - TICK_ROOM_MM for w in wheels])
+    cx, cy = left - END_GAP_MM - reach, 0.0
+
+    circles, arms = [], []
+    for w in central:
+        circles.append((w.name, (cx, cy), radius[w.name] * mm, w.internal))
+    k = train.planets
+    for c in train.carriers:
+        arm = height[s.planets_of(c)[0].name] * mm if s.planets_of(c) else 0.0
+        for j in range(k):
+            t = math.pi / 2 + 2.0 * math.pi * j / k
+            p = (cx + arm * math.cos(t), cy + arm * math.sin(t))
+            arms.append(((cx, cy), p))
+            for w in train.wheels:
+                if w.on == c:
+                    circles.append((w.name, p, radius[w.name] * mm, w.internal))
+    return EndView(mu=mu, centre=(cx, cy), circles=tuple(circles), arms=tuple(arms))
 
 
 def _spans(analysis: GearAnalysis, radius: dict[str, float], height: dict[str, float]) -> dict[str, tuple[float, float]]:

@@ -57,15 +57,50 @@ def _coords(sheet: GearSheet) -> list[tuple[float, float]]:
     pts += [seg.head for seg in sheet.omega]
     x, y = _table_at(sheet)
     pts += [(x, y), (x + sum(TABLE_COLUMNS_MM), y - ROW_MM * (len(sheet.table) + 1))]
+    if sheet.end is not None:
+        for _, (cx, cy), r, _ in sheet.end.circles:
+            pts += [(cx - r - 2.0, cy - r - 2.0), (cx + r + 2.0, cy + r + 6.0)]
     return pts
 
 
 def _table_at(sheet: GearSheet) -> tuple[float, float]:
-    """The table's top left corner: under the side view, mm."""
+    """The table's top left corner: under the side view, or under the end view, mm."""
     x0 = min([s.x0 for s in sheet.shafts] + [w.x for w in sheet.wheels]) - 8.0
     bottom = min(min(w.y for w in sheet.wheels if not w.mirror) - max(w.r for w in sheet.wheels) - 6.0,
                  min((-w.y - w.r - 6.0 for w in sheet.wheels if w.mirror), default=0.0))
+    if sheet.end is not None:
+        (cx, cy), reach = sheet.end.centre, max(r + math.dist(c, sheet.end.centre)
+                                                for _, c, r, _ in sheet.end.circles)
+        return min(x0, cx - reach), cy - reach - 12.0
     return x0, bottom - 12.0
+
+
+def _end_view(dwg, canvas: Canvas, sheet: GearSheet, ident: str, style: Style, labels) -> None:
+    """The planets seen along the axis: pitch circles, the carrier's arms, a caption with its scale."""
+    end = sheet.end
+    if end is None:
+        return
+    g = dwg.g(id=f"{ident}-end", stroke=style.colour, fill="none")
+    g.attribs["data-mu"] = repr(end.mu)
+    g.attribs["data-plan"] = "scheme"
+    for k, (a, b) in enumerate(end.arms):
+        canvas.line(g, a, b, width=style.link, stroke_width=fmt(style.link, 3), id=f"{ident}-earm{k}")
+    seen = set()
+    for k, (name, c, r, ring) in enumerate(end.circles):
+        w = style.link if ring else style.vector
+        canvas.circle(g, c, r, stroke_width=fmt(w, 3), id=f"{ident}-ec{k}")
+        if name not in seen:        # each wheel named once: a central one at its top, a planet outside it
+            seen.add(name)
+            out = (c[0] - end.centre[0], c[1] - end.centre[1])
+            at, prefer = ((c[0], c[1] + r), (0.3, 1.0)) if out == (0.0, 0.0) else \
+                ((c[0] + r * 0.7071, c[1] + r * 0.7071), (1.0, 1.0))
+            canvas.label(labels, at, markup(name), size=style.small_text, prefer=prefer, ident=f"{ident}-el{k}",
+                         near=0.6)
+    canvas.circle(g, end.centre, 0.9, filled=True, fill=style.colour, stroke="none", id=f"{ident}-eo")
+    dwg.add(g)
+    reach = max(r + math.dist(c, end.centre) for _, c, r, _ in end.circles)
+    canvas.text(labels, canvas.paper((end.centre[0] - reach, end.centre[1] - reach - 6.0)),
+                f"along the axis (μ_l = {end.mu:g} m/mm)", size=style.small_text, ident=f"{ident}-ecap")
 
 
 def _table(dwg, canvas: Canvas, sheet: GearSheet, at: tuple[float, float], ident: str, style: Style) -> None:
@@ -120,6 +155,7 @@ def draw_gears(sheet: GearSheet, heading: Heading, *, ident: str, style: Style =
     _side_view(dwg, canvas, sheet, ident, style, labels)
     _velocity_picture(dwg, canvas, sheet, ident, style, labels)
     _omega_picture(dwg, canvas, sheet, ident, style, labels)
+    _end_view(dwg, canvas, sheet, ident, style, labels)
     _table(dwg, canvas, sheet, _table_at(sheet), ident, style)
     dwg.add(labels)
     if notes:
