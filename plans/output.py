@@ -23,6 +23,17 @@ __all__ = ["write_files", "check_folder"]
 OPTION = "-o"
 
 
+def refuse_inputs(targets: Iterable[str | Path], inputs: Iterable[str | Path]) -> None:
+    """Refuse, before anything is written, an output path that names one of ``inputs`` (the
+    files the run read: links and ``..`` resolved)."""
+    read = [Path(p) for p in inputs]
+    for target in map(Path, targets):
+        clash = next((p for p in read if _same_file(p, target)), None)
+        if clash is not None:
+            raise OutputError(f"would overwrite the input file {clash} with an output of the same name; choose "
+                              "another -o (or rename the input)", file=str(target), key=OPTION)
+
+
 def _same_file(a: Path, b: Path) -> bool:
     """Whether paths ``a`` and ``b`` name one existing file (links and ``..`` resolved)."""
     try:
@@ -62,12 +73,7 @@ def write_files(files: Mapping[str, str | bytes], out_dir: str | Path, *, inputs
     out = Path(out_dir)
     check_folder(out)
     targets = [out / name for name in files]
-    read = [Path(p) for p in inputs]
-    for target in targets:
-        clash = next((p for p in read if _same_file(p, target)), None)
-        if clash is not None:
-            raise OutputError(f"would overwrite the input file {clash} with an output of the same name; choose "
-                              "another -o (or rename the input)", file=str(target), key=OPTION)
+    refuse_inputs(targets, inputs)
     for target in targets:
         if target.is_dir() or (target.exists() and not target.is_file()):
             raise OutputError("a folder (or another non-file) is where this output file goes; move it away or "

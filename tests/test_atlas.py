@@ -124,6 +124,11 @@ def label(value: float) -> str:
     return f"{value:g}".replace("-", "m")   # the file suffix spells a minus as m
 
 
+def _reject(name: str):
+    """parse_constant for strict JSON: NaN, Infinity and -Infinity are not JSON."""
+    raise ValueError(f"{name} in a report: not JSON")
+
+
 def run(argv: list[str]) -> tuple[int, str, str]:
     """``plans`` in process: exit code, stdout, stderr."""
     out, err = io.StringIO(), io.StringIO()
@@ -164,7 +169,7 @@ def test_scene_over_its_range_renders_and_checks(tmp_path, stem):
     code, _, err = run(["render", str(scene), "-o", str(out), "-q"])
     assert code == 0, f"{stem} at {values}: {err.strip()}"
     assert "please report" not in err and "Traceback" not in err, err
-    report = json.loads((out / f"{stem}.json").read_text(encoding="utf-8"))
+    report = json.loads((out / f"{stem}.json").read_text(encoding="utf-8"), parse_constant=_reject)
     assert report["structure"]["dof"] == 1
     assert report["structure"]["formula"] == ATLAS[stem].formula
     assert [p.get("angle", p.get("displacement")) for p in report["positions"]] == pytest.approx(values)

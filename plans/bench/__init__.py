@@ -172,7 +172,7 @@ def run(out_dir: str | Path = "output/bench", *, quick: bool = False, out: TextI
                          "columns": {c.key: c.header for c in s.columns}, "rows": s.records()}
                      for k, s in sections.items()},
     }
-    (target / "bench.json").write_text(json.dumps(report, indent=1, ensure_ascii=False, default=_json) + "\n",
+    (target / "bench.json").write_text(json.dumps(_finite(report), indent=1, ensure_ascii=False, default=_json, allow_nan=False) + "\n",
                                        encoding="utf-8", newline="\n")
     print("", file=out)
     for h in headlines:
@@ -180,6 +180,18 @@ def run(out_dir: str | Path = "output/bench", *, quick: bool = False, out: TextI
     print(f"wrote {len(charts)} charts and bench.json to {target}/ in {elapsed:.1f} s (load average "
           f"{info['load_average']} at the start, {report['load_average_end']} at the end)", file=out)
     return report
+
+
+def _finite(v: Any) -> Any:
+    """``v`` with every NaN or infinity (a ratio over a zero time, say) written as null: bench.json
+    is strict JSON."""
+    if isinstance(v, (float, np.floating)):
+        return float(v) if math.isfinite(v) else None
+    if isinstance(v, dict):
+        return {k: _finite(x) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_finite(x) for x in v]
+    return v
 
 
 def _json(v: Any) -> Any:

@@ -10,11 +10,12 @@ the random draws or the command line.
 from __future__ import annotations
 
 import sys
+import time
 from pathlib import Path
 from typing import Callable, Sequence, TextIO
 
 from ..export import convert
-from ..output import check_folder, write_files
+from ..output import check_folder, refuse_inputs, write_files
 from .index import index_html
 from .solving import variant_data
 from .toml_text import to_toml, toml_value
@@ -56,14 +57,22 @@ class Progress:
         self.stream = sys.stderr if stream is None else stream
         self.on = bool(getattr(self.stream, "isatty", lambda: False)())
         self.total, self.what, self.width = max(total, 1), what, width
+        self.started = time.monotonic()
 
     def __call__(self, done: int, note: str = "") -> None:
         if not self.on:
             return
         filled = int(self.width * done / self.total)
         self.stream.write(f"\r{self.what} [{'#' * filled}{'-' * (self.width - filled)}] {done}/{self.total} "
-                          f"{note:<16}")
+                          f"{note:<16}{self.eta(done):>14}")
         self.stream.flush()
+
+    def eta(self, done: int) -> str:
+        """The time left, estimated from the time each item took so far (``about 1 min left``)."""
+        if done <= 0 or done >= self.total:
+            return ""
+        left = (time.monotonic() - self.started) / done * (self.total - done)
+        return f"about {left:.0f} s left" if left < 90 else f"about {left / 60:.0f} min left"
 
     def close(self) -> None:
         if self.on:
@@ -81,6 +90,9 @@ def write_handout(h: Handout, drawn: Sequence[Drawn], out: str | Path, *,
     out = Path(out)
     check_folder(out)
     base_name = _base_name(h)
+    inputs = [p for p in (h.base, h.source) if p is not None]
+    refuse_inputs([out / n for n in (VARIANTS, base_name, INDEX)]
+                  + [out / d.name / f"{d.name}{ext}" for d in drawn for ext in (".toml", ".json")], inputs)
     written: list[Path] = []
     try:
         for k, d in enumerate(drawn, 1):

@@ -85,8 +85,10 @@ def _centre(c: Centre, i: int) -> list[float] | str | None:
 
 
 def report_text(data: dict) -> str:
-    """The report file's text: ``data`` as indented JSON (UTF-8 as is), -0.0 written as 0.0."""
-    return json.dumps(_no_negative_zero(data), indent=1, ensure_ascii=False) + "\n"
+    """The report file's text: ``data`` as indented JSON (UTF-8 as is), -0.0 written as 0.0. Strict
+    JSON: a NaN or an infinity left in ``data`` is a ValueError, never written (undefined values
+    are null, by the report's own choice)."""
+    return json.dumps(_no_negative_zero(data), indent=1, ensure_ascii=False, allow_nan=False) + "\n"
 
 
 def _num(x) -> float | None:

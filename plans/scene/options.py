@@ -85,6 +85,11 @@ def read_cycle(keys: Mapping[str, Any], drive: Drive, plans: Mapping[str, Any], 
         raise SceneError(f"output names the output link of the cycle, one of the moving links "
                          f"{', '.join(moving)} (a string, e.g. \"{moving[-1]}\"); got {SHOW.repr(output)}",
                          key="plans.output")
+    if output == drive.link:
+        others = [m for m in moving if m != drive.link]
+        raise SceneError(f"output {output!r} is the driving link itself, whose angle is the cycle's time axis (its "
+                         f"diagrams would be a straight line and its stroke the whole turn); name the driven link "
+                         f"whose motion the cycle shows, e.g. \"{others[-1] if others else output}\"", key="plans.output")
     trace = plans.get("trace", [])
     if not isinstance(trace, list) or not all(isinstance(p, str) for p in trace):
         raise SceneError(f'trace is a list of point names, e.g. ["C"]; got {SHOW.repr(trace)}', key="plans.trace")
@@ -98,5 +103,9 @@ def read_cycle(keys: Mapping[str, Any], drive: Drive, plans: Mapping[str, Any], 
             or not all(0 <= k < n for k in at) or len(set(at)) != len(at):
         raise SceneError(f"at lists the position numbers (0 to {n - 1}, each once) drawn on sheets of their own, "
                          f"e.g. [0, 3]; got {SHOW.repr(at)}", key="plans.at")
+    if not at and not set(CYCLE_SHEETS) & set(draw):
+        raise SceneError("at = [] draws no position on sheets of its own, and draw holds no sheet of the whole "
+                         f"cycle ({', '.join(CYCLE_SHEETS)}): nothing would be drawn; list positions in at, or add "
+                         "a cycle sheet to draw", key="plans.at")
     return Cycle(positions=n, start=keys.get("start", "angle"), output=output, trace=tuple(trace),
                  at=tuple(sorted(at)))

@@ -14,6 +14,7 @@ headline figures (``summary``) and charts. Nothing here prints or writes files.
 7. :func:`class_cost` (:mod:`.group_cost`) — class III and IV groups: cost per position against the crank-slider
 8. :func:`limited_walk` (:mod:`.limited`) — a crank that cannot turn fully, angles on both sides of its sketch:
    one call against each angle walked alone
+9. :func:`handout_time` (:mod:`.handout_time`) — a class set: time per variant, and for 999
 
 What several sections share lives in :mod:`.common` (table, configuration, scenes, timing) and
 :mod:`.pylinkage_model` (a scene as a pylinkage Linkage). This package must not import
@@ -27,6 +28,7 @@ from typing import Callable
 from .common import FULL, QUICK, Column, Config, Section
 from .group_cost import CLASS_COST_TARGET, class_cost
 from .limited import limited_walk
+from .handout_time import handout_time
 from .numba_path import AGREEMENT_TARGET, NUMBA_TARGET, numba_comparison
 from .peer import peer_comparison
 from .precision import drawing_precision
@@ -34,7 +36,7 @@ from .rates import THROUGHPUT_TARGET, render_rate, throughput
 from .resolution import cycle_resolution
 from .solver import SOLVER_CASES, SolverCase, solver_tolerance
 
-__all__ = ["Column", "Section", "Config", "FULL", "QUICK", "SECTIONS", "drawing_precision", "solver_tolerance",
+__all__ = ["handout_time", "Column", "Section", "Config", "FULL", "QUICK", "SECTIONS", "drawing_precision", "solver_tolerance",
            "cycle_resolution", "throughput", "render_rate", "peer_comparison", "THROUGHPUT_TARGET", "SolverCase",
            "SOLVER_CASES", "numba_comparison", "class_cost", "limited_walk", "NUMBA_TARGET", "AGREEMENT_TARGET",
            "CLASS_COST_TARGET"]
@@ -42,4 +44,4 @@ __all__ = ["Column", "Section", "Config", "FULL", "QUICK", "SECTIONS", "drawing_
 #: Every section in the order ``plans bench`` runs and prints them.
 SECTIONS: tuple[Callable[[Config], Section], ...] = (drawing_precision, solver_tolerance, cycle_resolution,
                                                      throughput, render_rate, peer_comparison,
-                                                     numba_comparison, class_cost, limited_walk)
+                                                     numba_comparison, class_cost, limited_walk, handout_time)
