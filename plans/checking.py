@@ -74,6 +74,8 @@ import math
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
+import shapely
+
 from .checking_geometry import GEOMETRY_TOL_MM, check_plan, similarity_ratio
 from .checking_gears import gear_problems
 from .checking_read import (_SVG, _TRANSFORM, _Union, _decimals, _ends, _line_data, _number, _paper_problems,
@@ -122,7 +124,6 @@ def inspect_svg(path: str | Path, precision: float | None = WRITER_PRECISION) ->
         raise DrawingError(str(exc)) from None
     except ET.ParseError as exc:
         raise DrawingError(f"{path}: cannot read the SVG ({exc})") from None
-    parent = {c: p for p in root.iter() for c in p}
     tagged = [e for e in root.iter() if e.get("data-quantity") is not None]
     plan_groups = [g for g in root.iter(f"{_SVG}g") if g.get("data-mu") is not None]
     claims_plan = any(g.get("data-plan") != SCHEME for g in plan_groups) \
@@ -162,24 +163,19 @@ def inspect_svg(path: str | Path, precision: float | None = WRITER_PRECISION) ->
                 problems.append(f"plan {g.get('id')}: line {line.get('id')} is neither a tagged vector nor a "
                                 "construction line")
     by_group: dict[ET.Element, list] = {}
+    above = _ancestry(root)             # one walk down the tree: linear in its size, at any depth
     for line in tagged:
         q = line.get("data-quantity")
-        chain, el, group = [], line, None
-        while el in parent:
-            el = parent[el]
-            chain.append(el)
-            if group is None and el.tag == f"{_SVG}g" and el.get("data-mu") is not None:
-                group = el
+        group, transformed, odd = above.get(line, (None, None, None))
         if line.tag != f"{_SVG}line":
             problems.append(f"{q}: tagged element <{line.tag.replace(_SVG, '')}> is not a <line>")
             continue
-        bad = [e for e in [line] + chain if _transformed(e)]
-        if bad:
-            problems.append(f"{q}: transform on <{bad[0].tag.replace(_SVG, '')} id={bad[0].get('id')!r}>; "
+        bad = line if _transformed(line) else transformed
+        if bad is not None:
+            problems.append(f"{q}: transform on <{bad.tag.replace(_SVG, '')} id={bad.get('id')!r}>; "
                             "plan elements and everything above them must not be transformed")
-        odd = [e for e in chain if e.tag != f"{_SVG}g" and e is not root]
-        if odd:
-            problems.append(f"{q}: inside <{odd[0].tag.replace(_SVG, '')}>; a vector may sit in <g> elements only")
+        if odd is not None:
+            problems.append(f"{q}: inside <{odd.tag.replace(_SVG, '')}>; a vector may sit in <g> elements only")
         if group is None:
             problems.append(f"{q}: tagged vector outside any plan group (<g data-mu>)")
             continue
@@ -318,6 +314,32 @@ def _lever(report: SvgReport, g: ET.Element, gid: str, lines: list[ET.Element], 
     report.equations[gid] = report.equations.get(gid, 0) + 1
 
 
+def _ancestry(root: ET.Element) -> dict[ET.Element, tuple]:
+    """For every element below ``root``, by one iterative walk down the tree: its nearest plan
+    group above it (a ``<g data-mu>``), its nearest transformed element above it, and its nearest
+    element above it that is neither a ``<g>`` nor the root (None where there is none)."""
+    out: dict[ET.Element, tuple] = {}
+    stack = [(root, (None, None, None))]
+    while stack:
+        el, (group, transformed, odd) = stack.pop()
+        mine = (el if el.tag == f"{_SVG}g" and el.get("data-mu") is not None else group,
+                el if _transformed(el) else transformed,
+                el if el.tag != f"{_SVG}g" and el is not root else odd)
+        for child in el:
+            out[child] = mine
+            stack.append((child, mine))
+    return out
+
+
+def _diameter(pts: list[tuple[float, float]]) -> float:
+    """The largest distance between two of ``pts``: over their convex hull when there are many
+    (a label shared by thousands of ends stays linear-logarithmic, not quadratic)."""
+    if len(pts) > 64:
+        hull = shapely.MultiPoint(pts).convex_hull
+        pts = list(hull.exterior.coords) if hull.geom_type == "Polygon" else list(hull.coords)
+    return max(math.dist(a, b) for a in pts for b in pts)
+
+
 def _closures(report: SvgReport, gid: str, ends: list, tol: float) -> None:
     """Join the ends named alike (by label or by the quantity's name); every point's ends
     must coincide."""
@@ -336,7 +358,7 @@ def _closures(report: SvgReport, gid: str, ends: list, tol: float) -> None:
         if len(members) < 2:
             continue
         pts = [ends[k][1] for k in members]
-        gap = max(math.dist(a, b) for a in pts for b in pts)
+        gap = _diameter(pts)
         labels = sorted({ends[k][4] for k in members if ends[k][4] is not None})
         names = sorted({_point_name(ends[k][3]) for k in members if ends[k][3] is not None})
         point = " = ".join(labels + [n for n in names if n not in labels]) or "?"

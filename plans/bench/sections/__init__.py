@@ -15,6 +15,7 @@ headline figures (``summary``) and charts. Nothing here prints or writes files.
 8. :func:`limited_walk` (:mod:`.limited`) — a crank that cannot turn fully, angles on both sides of its sketch:
    one call against each angle walked alone
 9. :func:`handout_time` (:mod:`.handout_time`) — a class set: time per variant, and for 999
+10. :func:`check_scale` (:mod:`.check_scale`) — plans check on hostile files: linear in vectors and nesting depth
 
 What several sections share lives in :mod:`.common` (table, configuration, scenes, timing) and
 :mod:`.pylinkage_model` (a scene as a pylinkage Linkage). This package must not import
@@ -28,6 +29,7 @@ from typing import Callable
 from .common import FULL, QUICK, Column, Config, Section
 from .group_cost import CLASS_COST_TARGET, class_cost
 from .limited import limited_walk
+from .check_scale import check_scale
 from .handout_time import handout_time
 from .numba_path import AGREEMENT_TARGET, NUMBA_TARGET, numba_comparison
 from .peer import peer_comparison
@@ -36,7 +38,7 @@ from .rates import THROUGHPUT_TARGET, render_rate, throughput
 from .resolution import cycle_resolution
 from .solver import SOLVER_CASES, SolverCase, solver_tolerance
 
-__all__ = ["handout_time", "Column", "Section", "Config", "FULL", "QUICK", "SECTIONS", "drawing_precision", "solver_tolerance",
+__all__ = ["handout_time", "check_scale", "Column", "Section", "Config", "FULL", "QUICK", "SECTIONS", "drawing_precision", "solver_tolerance",
            "cycle_resolution", "throughput", "render_rate", "peer_comparison", "THROUGHPUT_TARGET", "SolverCase",
            "SOLVER_CASES", "numba_comparison", "class_cost", "limited_walk", "NUMBA_TARGET", "AGREEMENT_TARGET",
            "CLASS_COST_TARGET"]
@@ -44,4 +46,5 @@ __all__ = ["handout_time", "Column", "Section", "Config", "FULL", "QUICK", "SECT
 #: Every section in the order ``plans bench`` runs and prints them.
 SECTIONS: tuple[Callable[[Config], Section], ...] = (drawing_precision, solver_tolerance, cycle_resolution,
                                                      throughput, render_rate, peer_comparison,
-                                                     numba_comparison, class_cost, limited_walk, handout_time)
+                                                     numba_comparison, class_cost, limited_walk, handout_time,
+                                                     check_scale)
