@@ -85,7 +85,7 @@ def read_cycle(keys: Mapping[str, Any], drive: Drive, plans: Mapping[str, Any], 
         raise SceneError(f"output names the output link of the cycle, one of the moving links "
                          f"{', '.join(moving)} (a string, e.g. \"{moving[-1]}\"); got {SHOW.repr(output)}",
                          key="plans.output")
-    if output == drive.link:
+    if output == drive.link and "output" in plans:
         others = [m for m in moving if m != drive.link]
         raise SceneError(f"output {output!r} is the driving link itself, whose angle is the cycle's time axis (its "
                          f"diagrams would be a straight line and its stroke the whole turn); name the driven link "
