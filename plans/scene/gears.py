@@ -73,10 +73,7 @@ def read_gears(table: Mapping[str, Any]) -> GearTrain:
     """Validate ``[gears]`` (with its subtables ``wheels`` and ``input``) and build a :class:`GearTrain`."""
     if not isinstance(table, Mapping):
         raise SceneError("[gears] must be a table", key="gears")
-    unknown = sorted(str(k) for k in set(table) - _GEAR_KEYS)
-    if unknown:
-        raise SceneError(f"unknown key {unknown[0]!r}; [gears] has {', '.join(sorted(_GEAR_KEYS))}",
-                         key=f"gears.{unknown[0]}")
+    _only(table, _GEAR_KEYS, "gears", "[gears] has")
     wheels_table = table.get("wheels")
     if not isinstance(wheels_table, Mapping) or not wheels_table:
         raise SceneError("a gear train needs its wheels: [gears.wheels] a = { teeth = 20 }, …", key="gears.wheels")
@@ -120,6 +117,13 @@ def read_gears(table: Mapping[str, Any]) -> GearTrain:
                      inputs=inputs, output=output)
 
 
+def _only(table: Mapping[str, Any], allowed: set[str], key: str, has: str) -> None:
+    """Refuse the first key of ``table`` (sorted) that is not ``allowed``, at ``key.<it>``."""
+    unknown = sorted(str(k) for k in set(table) - allowed)
+    if unknown:
+        raise SceneError(f"unknown key {unknown[0]!r}; {has} {', '.join(sorted(allowed))}", key=f"{key}.{unknown[0]}")
+
+
 def _names(value: Any, key: str, what: str) -> tuple[str, ...]:
     if not isinstance(value, list):
         raise SceneError(f"expected a list of {what} names, e.g. [\"H\"], got {SHOW.repr(value)}", key=key)
@@ -136,10 +140,7 @@ def _wheel(name: str, spec: Any) -> Wheel:
     if not isinstance(spec, Mapping):
         raise SceneError(f"a wheel is an inline table, e.g. {name} = {{ teeth = 20, module = 2.0 }}, got "
                          f"{SHOW.repr(spec)}", key=key)
-    unknown = sorted(str(k) for k in set(spec) - _WHEEL_KEYS)
-    if unknown:
-        raise SceneError(f"unknown key {unknown[0]!r}; a wheel has {', '.join(sorted(_WHEEL_KEYS))}",
-                         key=f"{key}.{unknown[0]}")
+    _only(spec, _WHEEL_KEYS, key, "a wheel has")
     if "teeth" not in spec:
         raise SceneError("missing teeth: the number of teeth of the wheel", key=f"{key}.teeth")
     teeth = spec["teeth"]
@@ -216,10 +217,7 @@ def read_synthesis(table: Any) -> Synthesis:
     """Validate ``[synthesis]`` (the bounds of each value are checked by the synthesis itself)."""
     if not isinstance(table, Mapping):
         raise SceneError("[synthesis] must be a table", key="synthesis")
-    unknown = sorted(str(k) for k in set(table) - _SYNTHESIS_KEYS)
-    if unknown:
-        raise SceneError(f"unknown key {unknown[0]!r}; [synthesis] has {', '.join(sorted(_SYNTHESIS_KEYS))}",
-                         key=f"synthesis.{unknown[0]}")
+    _only(table, _SYNTHESIS_KEYS, "synthesis", "[synthesis] has")
     for k in ("ratio", "type", "planets"):
         if k not in table:
             raise SceneError(f"missing {k}: [synthesis] needs ratio, type (A, B, C or D) and planets",
