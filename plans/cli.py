@@ -312,6 +312,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         if args.command == "bench":
             from .bench import run   # imported here: the other commands need none of it
 
+            check_folder(args.output)   # a bad -o is told before the minutes of measuring
             run(args.output, quick=args.quick)
             return 0
         return _check(args.svgs)

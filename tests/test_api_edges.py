@@ -215,3 +215,16 @@ def test_a_copied_package_beside_another_projects_pyproject_keeps_its_own_versio
     assert r.returncode == 0, r.stderr
     file, got = r.stdout.split()
     assert Path(file).parent == tmp_path / "plans" and got == version
+
+
+def test_bench_refuses_a_bad_output_folder_before_measuring(tmp_path, capsys, monkeypatch):
+    from plans import bench, cli
+
+    (tmp_path / "afile").write_text("x")
+    ran = []
+    monkeypatch.setattr(bench, "run", lambda *a, **k: ran.append(a))
+    assert cli.main(["bench", "--quick", "-o", str(tmp_path / "afile" / "sub")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("plans: error: ") and "[-o]" in err and "lies below the file" in err
+    assert len(err.strip().splitlines()) == 1 and ran == []
+    assert [p.name for p in tmp_path.iterdir()] == ["afile"] and (tmp_path / "afile").read_text() == "x"
