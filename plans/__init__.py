@@ -28,7 +28,12 @@ def _version() -> str:
     if here.is_file():                      # a checkout: its pyproject is the truth
         import tomllib
 
-        return tomllib.loads(here.read_text(encoding="utf-8"))["project"]["version"]
+        try:
+            project = tomllib.loads(here.read_text(encoding="utf-8")).get("project", {})
+        except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+            project = {}
+        if project.get("name") == "plans" and isinstance(project.get("version"), str):
+            return project["version"]       # not another project's pyproject beside a copied package
     try:
         return metadata.version("plans")
     except metadata.PackageNotFoundError:   # pragma: no cover - neither installed nor a checkout

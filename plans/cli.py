@@ -12,8 +12,9 @@ from typing import Sequence
 import numpy as np
 
 from .errors import OutputError, PlansError, SceneError, one_line
-from .export import DEFAULT_DPI, FORMATS, MAX_DPI, MIN_DPI, convert, parse_dpi, parse_formats, require_cairo
-from .output import check_folder, write_files
+from .export import (DEFAULT_DPI, FORMATS, MAX_DPI, MIN_DPI, check_png_sizes, convert, output_names, parse_dpi,
+                     parse_formats, require_cairo)
+from .output import check_folder, refuse_inputs, write_files
 from .pipeline import Rendered, render_scene
 
 __all__ = ["main"]
@@ -66,6 +67,10 @@ def _render(paths: Sequence[str], out: str, quiet: bool, formats: Sequence[str] 
     if set(formats) - {"svg"}:
         require_cairo()          # a missing cairo is told before anything is computed
     rendered = [render_scene(p) for p in paths]
+    refuse_inputs([Path(out) / name for r in rendered for name in output_names(r.files, formats)], paths)
+    if "png" in formats:         # every scene's every sheet fits as a PNG before any is drawn
+        for r in rendered:
+            check_png_sizes(r.files, dpi)
     files: dict[str, str | bytes] = {}
     counts = []
     for path, r in zip(paths, rendered):
@@ -228,7 +233,7 @@ def _synthesize(args: argparse.Namespace) -> int:
     title = f"Planetary train, type {kind}, i = {float(best.ratio):.6g} ({planets} planets)"
     sheets = render(Scene(title=title, points={}, links={}, sliders=(), drive=None, draw=("gears",),
                           gears=best.train), stem=stem)
-    sheets.save(args.output)
+    write_files(sheets.files, args.output)      # not Sheets.save: errors name -o, not save's folder
     if not args.quiet:
         print(f"type {kind}, i = {ratio:g} ± {float(args.tolerance):g}, {planets} planets: {len(found)} candidates, "
               "smallest first (each solved and checked as a train)")
@@ -307,6 +312,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         if args.command == "bench":
             from .bench import run   # imported here: the other commands need none of it
 
+            check_folder(args.output)   # a bad -o is told before the minutes of measuring
             run(args.output, quick=args.quick)
             return 0
         return _check(args.svgs)

@@ -28,7 +28,8 @@ from typing import Mapping, Sequence
 from .errors import OutputError
 
 __all__ = ["FORMATS", "DEFAULT_DPI", "MIN_DPI", "MAX_DPI", "MAX_PNG_SIDE", "MAX_PNG_PIXELS",
-           "parse_formats", "parse_dpi", "require_cairo", "sheet_size_mm", "png_size",
+           "parse_formats", "parse_dpi", "require_cairo", "sheet_size_mm", "png_size", "check_png_sizes",
+           "output_names",
            "svg_to_png", "svg_to_pdf", "convert"]
 
 #: Output formats ``--format`` accepts, in the order their files are listed.
@@ -170,6 +171,18 @@ def svg_to_pdf(svg_text: str) -> bytes:
     return _undated(pdf)
 
 
+def output_names(files: Mapping[str, str], formats: Sequence[str]) -> list[str]:
+    """The names :func:`convert` gives ``files`` in ``formats``, without converting anything (to
+    check the targets before any sheet is drawn)."""
+    names = []
+    for name in files:
+        if not name.endswith(".svg"):
+            names.append(name)
+            continue
+        names += [f"{name[:-len('.svg')]}.{f}" for f in FORMATS if f in formats]
+    return names
+
+
 def convert(files: Mapping[str, str], formats: Sequence[str], dpi: float = DEFAULT_DPI) -> dict[str, str | bytes]:
     """The files to write for ``formats``: beside each ``X.svg`` its ``X.png`` (at ``dpi``
     dots per inch) and ``X.pdf`` when asked for; ``X.svg`` itself only when ``"svg"`` is among
@@ -183,13 +196,7 @@ def convert(files: Mapping[str, str], formats: Sequence[str], dpi: float = DEFAU
         raise OutputError(f"unknown format {sorted(unknown)[0]!r}" if unknown else "no format given",
                           key="--format")
     if "png" in wanted:        # every sheet's pixel size before any is drawn
-        for name, text in files.items():
-            size = sheet_size_mm(text) if name.endswith(".svg") else None
-            if size is not None:
-                try:
-                    _check_png_size(size, dpi)
-                except OutputError as exc:
-                    raise OutputError(exc.message, file=name, key=exc.key) from None
+        check_png_sizes(files, dpi)
     out: dict[str, str | bytes] = {}
     for name, text in files.items():
         if not name.endswith(".svg"):
@@ -206,6 +213,18 @@ def convert(files: Mapping[str, str], formats: Sequence[str], dpi: float = DEFAU
         except OutputError as exc:
             raise OutputError(exc.message, file=exc.file or name, key=exc.key) from None
     return out
+
+
+def check_png_sizes(files: Mapping[str, str], dpi: float) -> None:
+    """Refuse, naming the sheet, a PNG at ``dpi`` dots per inch of any SVG sheet among ``files``
+    (name → text) larger than cairo can draw: called for every sheet before any is drawn."""
+    for name, text in files.items():
+        size = sheet_size_mm(text) if name.endswith(".svg") else None
+        if size is not None:
+            try:
+                _check_png_size(size, dpi)
+            except OutputError as exc:
+                raise OutputError(exc.message, file=name, key=exc.key) from None
 
 
 def _check_png_size(size: tuple[float, float], dpi: float) -> None:

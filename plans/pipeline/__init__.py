@@ -24,7 +24,7 @@ from ..gears.report import gears_report, synthesis_report, synthesize_scene
 from ..scene import Scene, read_scene
 from .json_report import report, report_text
 from .motion_checks import check_triads, motion_warnings
-from .naming import MAX_STEM_CHARS, checked_stem, stem_of
+from .naming import MAX_STEM_CHARS, checked_stem, file_stem, stem_of
 from .rest import at_rest
 from .result import Rendered, Sheet, Sheets
 from .scales import scene_scales
@@ -49,7 +49,8 @@ def render_scene(path: str | Path, style: Style = Style()) -> Rendered:
     A mechanism at rest (the drive stands) gets, instead of each plan with nothing to draw, a
     sheet saying so, and a warning; so does Koshel's plan where its construction degenerates
     (:class:`~plans.errors.ConstructionError`) or fails its check. Every other sheet is drawn."""
-    return _render(read_scene(path), stem=Path(path).stem, where=str(path), style=style)
+    scene = read_scene(path)                       # a missing file is told before its name
+    return _render(scene, stem=file_stem(path), where=str(path), style=style)
 
 
 def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rendered:
@@ -133,11 +134,13 @@ def render(scene: Scene | str | os.PathLike, *, style: Style = Style(), stem: st
         path = Path(scene)
         rendered = render_scene(path, style) if stem is None else \
             _render(read_scene(path), stem=checked_stem(stem), where=str(path), style=style)
+        source: str | None = os.path.abspath(path)
     elif isinstance(scene, Scene):
         name = checked_stem(stem) if stem is not None else \
-            Path(scene.file).stem if scene.file else stem_of(scene.title)
+            file_stem(scene.file) if scene.file else stem_of(scene.title)
         rendered = _render(scene, stem=name, where=scene.file, style=style)
+        source = os.path.abspath(scene.file) if scene.file else None
     else:
         raise TypeError(f"plans.render takes a Scene or the path of a scene file, not {type(scene).__name__}")
     return Sheets(rendered.stem, rendered.files, rendered.motion, rendered.scales, rendered.warnings, rendered.forces,
-                  rendered.train)
+                  rendered.train, source)

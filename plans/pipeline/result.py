@@ -10,17 +10,19 @@ from __future__ import annotations
 import base64
 import html
 import json
+import numbers
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Iterator, Sequence
 
 from ..constructions import Scales
 from ..errors import OutputError
-from ..export import DEFAULT_DPI, MAX_DPI, MIN_DPI, convert, parse_dpi, parse_formats, require_cairo
+from ..export import (DEFAULT_DPI, MAX_DPI, MIN_DPI, convert, output_names, parse_dpi, parse_formats,
+                      require_cairo)
 from ..gears import GearAnalysis
 from ..kinematics import Motion
 from ..kinetostatics import Forces
-from ..output import check_folder, write_files
+from ..output import check_folder, refuse_inputs, write_files
 
 __all__ = ["Rendered", "Sheet", "Sheets", "save_files"]
 
@@ -37,6 +39,7 @@ class Rendered:
     warnings: tuple[str, ...]
     forces: Forces | None = None    # the force analysis, when the scene asks for it
     train: GearAnalysis | None = None   # the gear train, when the scene has [gears]
+    source: str | None = None   # the scene file read, when one was: save never writes over it
 
 
 @dataclass(frozen=True)
@@ -125,8 +128,12 @@ class Sheets(Rendered):
         """Write the sheets in ``formats`` (``("svg", "png", "pdf")`` or ``"svg,png"``; PNG at
         ``dpi`` dots per inch) and the JSON report into ``folder`` (made if needed), as
         ``plans render --format`` does: all or nothing, nothing written on any error
-        (:class:`~plans.errors.OutputError`). Returns the paths written."""
-        return save_files(self.files, folder, formats, dpi)
+        (:class:`~plans.errors.OutputError`, naming ``folder``, ``formats`` or ``dpi``), nor over
+        the scene file it was rendered from (a scene ``x.json`` saved into its own folder).
+        ``formats`` is a string of comma-separated names or a list or tuple of names; ``dpi``
+        any real number from 10 to 2400 (``numpy`` numbers too; not a string). Returns the
+        paths written."""
+        return save_files(self.files, folder, formats, dpi, inputs=[self.source] if self.source else [])
 
 
 #: The command line's words for save's arguments (errors raised below name the argument).
@@ -143,10 +150,12 @@ def _in_api_words(exc: OutputError) -> OutputError:
     return OutputError(message, file=exc.file, key=_ARGUMENTS.get(exc.key or "", exc.key))
 
 
-def save_files(files: dict[str, str], folder: str | Path, formats: str | Sequence[str], dpi: float) -> list[Path]:
-    """Write ``files`` (name → text) into ``folder`` in ``formats`` at ``dpi``, all or nothing.
-    Every argument is checked first, as the command line checks ``-o``, ``--format`` and
-    ``--dpi``; an error names the argument (``folder``, ``formats``, ``dpi``)."""
+def save_files(files: dict[str, str], folder: str | Path, formats: str | Sequence[str], dpi: float, *,
+               inputs: Sequence[str | Path] = ()) -> list[Path]:
+    """Write ``files`` (name → text) into ``folder`` in ``formats`` at ``dpi``, all or nothing,
+    never over one of ``inputs`` (the scene file read). Every argument is checked first, by the
+    command line's own checks of ``-o``, ``--format`` and ``--dpi``; an error names the argument
+    (``folder``, ``formats``, ``dpi``)."""
     if isinstance(folder, bool) or not isinstance(folder, (str, Path)) or not str(folder).strip():
         raise OutputError(f"folder is the path of a folder (a str or Path), got {folder!r}", key="folder")
     if isinstance(formats, str):
@@ -156,14 +165,15 @@ def save_files(files: dict[str, str], folder: str | Path, formats: str | Sequenc
     else:
         raise OutputError(f"formats is \"svg,png\" or a list such as [\"svg\", \"png\"] of svg, png, pdf; got "
                           f"{formats!r}", key="formats")
-    if isinstance(dpi, bool) or not isinstance(dpi, (int, float)):
+    if isinstance(dpi, bool) or not isinstance(dpi, numbers.Real):
         raise OutputError(f"dpi is a number of dots per inch from {MIN_DPI:g} to {MAX_DPI:g}, got {dpi!r}", key="dpi")
     try:
         wanted = parse_formats(text)
         dpi = parse_dpi(dpi)
         check_folder(folder)
+        refuse_inputs([Path(folder) / name for name in output_names(files, wanted)], inputs)
         if set(wanted) - {"svg"}:
             require_cairo()
-        return write_files(convert(files, wanted, dpi), folder)
+        return write_files(convert(files, wanted, dpi), folder, inputs=inputs)
     except OutputError as exc:
         raise _in_api_words(exc) from None
