@@ -166,8 +166,11 @@ def _constants(mech: Mechanism, links: tuple[str, ...], pairs: tuple) -> _Consta
                      np.ascontiguousarray(ms.T), jc, js, [c for c in range(n) if c % 3 != 2], tuple(known_pins),
                      tuple(prismatic), np.ascontiguousarray(np.concatenate([template.T, mc.T, ms.T])),
                      kmat.reshape(2 * k, n * k))
-    if len(_CONSTANTS) >= 64:
-        _CONSTANTS.clear()
+    if len(_CONSTANTS) >= 64:          # drop the mechanisms gone, then the oldest: never the newest
+        for dead in [k for k, (ref, _) in _CONSTANTS.items() if ref() is None]:
+            del _CONSTANTS[dead]
+        while len(_CONSTANTS) >= 64:
+            del _CONSTANTS[next(iter(_CONSTANTS))]
     _CONSTANTS[key] = weakref.ref(mech), out
     return out
 
