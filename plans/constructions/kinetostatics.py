@@ -13,6 +13,8 @@ image of the rod's velocity relative to the cylinder — and is applied there.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from ..kinematics import Motion
@@ -22,7 +24,7 @@ from .forces import (BalanceForce, BalanceMoment, ForcePlan, ForceTerm, Lever, L
 from .plans import Plan
 from .scales import fitting_scale
 
-__all__ = ["group_force_plans", "lever", "lever_value", "lever_plan_scale", "LEVER_PLAN_MM"]
+__all__ = ["group_force_plans", "lever", "lever_value", "lever_scale", "lever_plan_scale", "LEVER_PLAN_MM"]
 
 
 def _pt(v) -> tuple[float, float]:
@@ -114,6 +116,22 @@ def lever(motion: Motion, forces: Forces, i: int, plan: Plan) -> Lever:
     else:
         balance = BalanceForce(image(b.link, b.point[i]), _pt(b.direction[i]))
     return zhukovsky_lever(plan, loads, balance, couples=couples)
+
+
+def lever_scale(result: Lever) -> float:
+    """The scale of the loads' moments on the lever ``result``, in the balancing element's unit
+    (N·m for a moment, N for a force): Σ|F_i| · max|p x| / |k| — every force on the lever (a
+    couple as its two forces M/l) times the largest distance of a point of the turned plan from
+    its pole, over the lever moment k of a unit balancing element. For a balancing moment that
+    is Σ|F_i|·v_max/ω1 (v_max the largest velocity on the plan); for a force, Σ|F_i|·v_max over
+    the velocity of its point along its line. The velocities are exact to rounding relative to
+    v_max, so two figures of the balancing element differ by rounding relative to this, however
+    small the element itself is (an extreme position, where the loaded point is at rest).
+    0 with no load on the lever."""
+    pole = result.pole_xy
+    size = max([math.dist(p.xy, pole) for p in result.points] + [0.0])
+    reach = sum(f.value for f in result.forces if f.kind != "balance") * size
+    return reach / abs(result.unit_moment) if result.unit_moment else 0.0
 
 
 def lever_value(result: Lever, forces: Forces, i: int) -> dict:

@@ -113,8 +113,9 @@ class Lever:
 
     ``points``: the turned images (mm, the pole at ``pole_xy``); ``segments``: the turned
     plan's lines; ``forces``: every force drawn (the balancing one last, or the two of its
-    couple); ``balance``: ``force`` or ``moment``; ``result``: the balancing force (N, signed
-    along the given direction) or moment (N·m, counter-clockwise positive);
+    couple; none for a balancing element of exactly 0, which is no force); ``balance``:
+    ``force`` or ``moment``; ``result``: the balancing force (N, signed along the given
+    direction) or moment (N·m, counter-clockwise positive);
     ``balance_vector``: the balancing force (N), or the crank's couple force at A;
     ``omega``: the crank's ω found from its images (rad/s; balance by a moment only);
     ``moment_sum``: Σ M_p of the given loads (N·mm); ``unit_moment``: the lever moment of a
@@ -236,7 +237,6 @@ def zhukovsky_lever(plan, loads: Sequence[LeverLoad], balance: BalanceForce | Ba
         result = -total / unit
         bal = [(balance.quantity, "balance", img, result * u, _label_of(pts, img, balance.label, "bal"),
                 balance.quantity)]
-        lines = {balance.quantity: u}
         kind, vec = "force", result * u
     elif isinstance(balance, BalanceMoment):
         e1, e2, per = _couple_direction(balance.ends, balance.length_m, balance.direction, balance.quantity)
@@ -250,12 +250,13 @@ def zhukovsky_lever(plan, loads: Sequence[LeverLoad], balance: BalanceForce | Ba
                  enumerate(((e1, balance.labels[0]), (e2, balance.labels[1])))]
         bal = [(f"F:{balance.quantity}:{name}", "balance", e, sign * result * per, name, balance.quantity)
                for e, sign, name in ((e1, -1.0, names[0]), (e2, 1.0, names[1]))]
-        lines = {f"F:{balance.quantity}:{names[0]}": -per, f"F:{balance.quantity}:{names[1]}": per}
         kind, vec = "moment", result * per
     else:
         raise ConstructionError(f"the balancing element {balance!r} is neither a BalanceForce nor a BalanceMoment")
-    items += bal
-    turned += [_turn(img, pole) for _, _, img, _, _, _ in bal]
+    if result != 0.0:       # an element of exactly 0 is no force: nothing to draw, no arm
+        items += bal
+        turned += [_turn(img, pole) for _, _, img, _, _, _ in bal]
+    result += 0.0           # not −0
     fmax = max([float(np.hypot(*f)) for _, _, _, f, _, _ in items] + [0.0])
     if mu is None:
         mu = standard_scale(fmax, window=window) if fmax > 0 else 1.0
@@ -268,9 +269,8 @@ def zhukovsky_lever(plan, loads: Sequence[LeverLoad], balance: BalanceForce | Ba
         if fn > 0:
             u = f / fn
             arm = abs(m) / fn
-        else:                   # a zero balancing element keeps the line it acts along
-            d = lines.get(q, np.array([1.0, 0.0]))
-            u = np.asarray(d, float) / float(np.hypot(*d))
+        else:                   # a zero load given to the lever: along x, its arm to that line
+            u = np.array([1.0, 0.0])
             arm = abs(_cross(r - pole, u))
         foot = r - float((r - pole) @ u) * u
         forces.append(LeverForce(q, k, label, _pt(r), _pt(f), _pt(r), _pt(r + f / mu), fn, m, arm, _pt(foot), src,

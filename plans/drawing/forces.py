@@ -313,11 +313,13 @@ def _arm_numbers(lever: Lever) -> dict[int, int]:
     return {k: n + 1 for n, k in enumerate(drawn)}
 
 
-def _lever_text(lever: Lever) -> list[str]:
-    """The written computation of the lever (rows of label markup)."""
-    rows = [f"Velocity plan turned 90° {lever.sense} about the pole {lever.pole} (μ_V = {lever.mu_v:g} (m/s)/mm);",
-            f"forces applied at the images of their points, μ_F = {lever.mu:g} N/mm; arms h in mm;",
-            "moments about p, counter-clockwise positive (N·mm):"]
+def _lever_text(lever: Lever, note: str = "") -> list[str]:
+    """The written computation of the lever (rows of label markup); ``note``: why no load is
+    on it (the first row after the plan's, when there is none)."""
+    rows = [f"Velocity plan turned 90° {lever.sense} about the pole {lever.pole} (μ_V = {lever.mu_v:g} (m/s)/mm);"]
+    if lever.forces:
+        rows += [f"forces applied at the images of their points, μ_F = {lever.mu:g} N/mm; arms h in mm;",
+                 "moments about p, counter-clockwise positive (N·mm):"]
     loads = [f for f in lever.forces if f.kind != "balance"]
     numbers = _arm_numbers(lever)
     couples: dict[str, LeverForce] = {}
@@ -333,7 +335,12 @@ def _lever_text(lever: Lever) -> list[str]:
         rows.append(f"  {symbol(f.quantity)} = {_number(f.value)} N, {h} = {_number(f.arm)} mm:  "
                     f"{_signed(f.moment, 5)}")
     if not loads:
-        rows.append("  no load acts at this position (none given, or every one zero):")
+        rows.append((note or "no load acts at this position") + ";")
+    if not any(f.kind == "balance" for f in lever.forces):      # exactly 0: no force, nothing drawn
+        unit = "N" if lever.balance == "force" else "N·m"
+        rows.append(f"Σ M_p(loads) = 0 N·mm, so {symbol(lever.balance_quantity)} = 0 {unit}: nothing to balance "
+                    "(none drawn)")
+        return rows
     rows.append(f"Σ M_p(loads) = {_signed(lever.moment_sum, 5)} N·mm;  Σ M_p = 0 gives")
     if lever.balance == "force":
         f = lever.forces[-1]
@@ -360,11 +367,12 @@ def _lever_text(lever: Lever) -> list[str]:
 SHORT_MM = 1e-6
 
 
-def draw_lever(lever: Lever, heading: Heading, *, ident: str, style: Style = Style()) -> str:
-    """SVG text of Zhukovsky's lever at one position (see the module docstring)."""
+def draw_lever(lever: Lever, heading: Heading, *, ident: str, style: Style = Style(), note: str = "") -> str:
+    """SVG text of Zhukovsky's lever at one position (see the module docstring); ``note``: why
+    no load is on it, written in its computation when none is."""
     coords = [p.xy for p in lever.points] + [f.head for f in lever.forces] + [f.foot for f in lever.forces]
     content = bounds(coords)
-    rows = [r for row in _lever_text(lever) for r in wrap(row, LEVER_TEXT_MM, TABLE_TEXT_MM, indent="      ")]
+    rows = [r for row in _lever_text(lever, note) for r in wrap(row, LEVER_TEXT_MM, TABLE_TEXT_MM, indent="      ")]
     text_w = max(width(runs(r), TABLE_TEXT_MM, False) for r in rows) + 2.0
     text_h = TABLE_LEAD_MM * (len(rows) + 1)
     cw, ch = content[2] - content[0], content[3] - content[1]
@@ -378,7 +386,8 @@ def draw_lever(lever: Lever, heading: Heading, *, ident: str, style: Style = Sty
     use_beside = fmt_b is not None and (fmt_u is None or order[fmt_b] <= order[fmt_u])
     W, H = beside if use_beside else below
     fmt_ = (fmt_b if use_beside else fmt_u) or FORMATS[2]
-    scales = f"μ_V = {lever.mu_v:g} (m/s)/mm (turned {lever.sense});  μ_F = {lever.mu:g} N/mm"
+    scales = f"μ_V = {lever.mu_v:g} (m/s)/mm (turned {lever.sense});  " + \
+        (f"μ_F = {lever.mu:g} N/mm" if lever.forces else "μ_F: no force to draw")
     dwg, canvas = new_sheet(fmt_, (0.0, 0.0, W, H), ident=ident, style=style,
                             block=TitleBlock(heading.mechanism, heading.sheet, heading.position, scales))
     ox, oy = canvas.dx, canvas.dy - H

@@ -10,7 +10,8 @@ Every load is either a force applied at a point of a link or a couple on a link:
 * the balancing element (``F:bal``, ``M:bal``), the reactions of the pairs (``R:i-j``, the
   force of link i on link j) — added by the solver as it finds them.
 
-Forces are (N, 2) arrays in newtons, points (N, 2) in metres, couples (N,) in N·m.
+Forces are (N, 2) arrays in newtons, points (N, 2) in metres, couples (N,) in N·m. A load
+smaller than :data:`MIN_LOAD` at a position is no load there: it is 0 at that position.
 """
 
 from __future__ import annotations
@@ -24,7 +25,13 @@ from ..kinematics import Motion
 from ..kinematics.state import cross
 from ..scene import Scene
 
-__all__ = ["Load", "Couple", "applied_loads"]
+__all__ = ["Load", "Couple", "applied_loads", "MIN_LOAD"]
+
+#: A force below this (N), or a moment below this (N·m), at a position is no load there (it is
+#: taken as 0): nothing a machine feels is this small, and a load near the end of the double
+#: range (1e-300 N) rounds away in some of the products the analysis and the lever take (its
+#: square underflows), so the force plans and the lever would disagree on whether it is there.
+MIN_LOAD = 1e-100
 
 
 @dataclass(frozen=True, eq=False)
@@ -73,19 +80,32 @@ def applied_loads(motion: Motion, scene: Scene) -> tuple[tuple[Load, ...], tuple
             if scene.gravity is not None:
                 g = np.zeros((n, 2))
                 g[:, 1] = -mass.mass * scene.gravity
-                loads.append(Load(f"G:{link}", link, s, g, "gravity"))
+                loads.append(Load(f"G:{link}", link, s, _force(g), "gravity"))
             a_s = motion.acceleration(mass.centre, link)
-            loads.append(Load(f"F:in:{link}", link, s, -mass.mass * a_s, "inertia"))
+            loads.append(Load(f"F:in:{link}", link, s, _force(-mass.mass * a_s), "inertia"))
         if mass.inertia > 0.0:
-            couples.append(Couple(f"M:in:{link}", link, -mass.inertia * motion.links[link].epsilon, "inertia"))
+            couples.append(Couple(f"M:in:{link}", link, _moment(-mass.inertia * motion.links[link].epsilon),
+                                  "inertia"))
     tags = _tags([f"F:ext:{f.at}" for f in scene.forces])
     for f, tag in zip(scene.forces, tags):
         vec = np.broadcast_to(np.array(f.vector, float), (n, 2)).copy()
-        loads.append(Load(tag, f.link, motion.position(f.at, f.link), vec, "external"))
+        loads.append(Load(tag, f.link, motion.position(f.at, f.link), _force(vec), "external"))
     tags = _tags([f"M:ext:{m.link}" for m in scene.moments])
     for m, tag in zip(scene.moments, tags):
-        couples.append(Couple(tag, m.link, np.full(n, m.value), "external"))
+        couples.append(Couple(tag, m.link, _moment(np.full(n, m.value)), "external"))
     return tuple(loads), tuple(couples)
+
+
+def _force(f: np.ndarray) -> np.ndarray:
+    """Forces (N, 2), N, with each one below :data:`MIN_LOAD` taken as 0."""
+    small = np.hypot(f[:, 0], f[:, 1]) < MIN_LOAD
+    return np.where(small[:, None], 0.0, f) if small.any() else f
+
+
+def _moment(m: np.ndarray) -> np.ndarray:
+    """Moments (N,), N·m, with each one below :data:`MIN_LOAD` taken as 0."""
+    small = np.abs(m) < MIN_LOAD
+    return np.where(small, 0.0, m) if small.any() else m
 
 
 def _tags(names: list[str]) -> list[str]:

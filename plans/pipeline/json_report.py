@@ -13,7 +13,7 @@ from typing import Mapping
 
 from ..constructions import Scales
 from ..constructions.forces import Lever
-from ..constructions.kinetostatics import lever_value
+from ..constructions.kinetostatics import lever_scale, lever_value
 from ..kinematics import Motion
 from ..kinematics.centres import Centre, Centres
 from ..kinetostatics import Forces
@@ -142,10 +142,12 @@ def _forces_at(scene: Scene, forces: Forces, i: int) -> dict:
 
 def _lever_report(result: Lever, forces: Forces, i: int) -> dict:
     """``lever`` (the balancing element found on Zhukovsky's lever ``result`` at position i)
-    and ``agreement``: the relative differences of the lever's and the power balance's
-    figures from the group-by-group one."""
+    and ``agreement``: the differences of the lever's and the power balance's figures from the
+    group-by-group one, over the scale of the loads' moments (:func:`lever_scale`; never less
+    than the group-by-group figure), not over the figure alone, which near an extreme position
+    is itself rounding."""
     value = float(forces.balance.value[i])
-    ref = max(abs(value), 1e-300)
+    ref = max(lever_scale(result), abs(value), 1e-300)
     power = None if forces.power is None else float(forces.power[i])
     return {"lever": lever_value(result, forces, i),
             "agreement": {"lever": abs(result.result - value) / ref,

@@ -7,35 +7,33 @@ Reads a solved Motion and Forces; imports nothing of the pipeline but :mod:`.pag
 
 from __future__ import annotations
 
-import math
 from typing import Iterable
 
 from ...constructions import Scales, velocity_plan
 from ...constructions.forces import Lever
-from ...constructions.kinetostatics import group_force_plans, lever, lever_plan_scale
+from ...constructions.kinetostatics import group_force_plans, lever, lever_plan_scale, lever_scale
 from ...drawing import Heading, Style
 from ...drawing.svg import draw_empty
 from ...drawing.forces import draw_force_plans, draw_lever
 from ...errors import PlansError
 from ...kinematics import Motion
-from ...kinetostatics import Forces
+from ...kinetostatics import MIN_LOAD, Forces
 from ...scene import Scene
 from .page import Page
 
-__all__ = ["LEVER_RTOL", "force_sheets", "force_warnings", "NO_LOAD", "AT_REST"]
+__all__ = ["LEVER_RTOL", "force_sheets", "force_warnings", "unloaded", "NO_LOAD", "AT_REST"]
 
-#: Why a force sheet asked for has nothing to draw.
-NO_LOAD = ("no load in effect at this position (none given, every mass zero, or each too small to count): "
-           "every reaction and the balancing element are zero")
+#: Why a force sheet asked for has nothing to draw: the same words on the force plans and the
+#: lever, on the sheet and in the warning.
+NO_LOAD = (f"no load in effect at this position (none given, every mass zero, or each below {MIN_LOAD:g} N or "
+           "N·m): every reaction and the balancing element are zero")
 AT_REST = ("the mechanism is at rest (the drive stands): there is no velocity plan to turn into the lever; "
-           "the balancing element is in the force plans and the report")
+           "the balancing element is the group-by-group one, in the report")
 
 #: The lever's balancing element must equal the group-by-group one to this fraction of the
-#: loads times the plan's size, Σ|F|·max|px| (both are exact; the difference is rounding).
+#: scale of the loads' moments (:func:`~plans.constructions.kinetostatics.lever_scale`,
+#: Σ|F|·v_max/ω1 for a moment): both are exact, the difference is rounding.
 LEVER_RTOL = 1e-9
-#: ... and to this absolute amount (N or N·m): loads at the edge of the double range (1e-300 N)
-#: round away in one of the two computations; nothing a machine feels is this small.
-LEVER_ATOL = 1e-200
 
 
 def force_sheets(scene: Scene, motion: Motion, forces: Forces, scales: Scales, own: Iterable[int], *, stem: str,
@@ -53,14 +51,15 @@ def force_sheets(scene: Scene, motion: Motion, forces: Forces, scales: Scales, o
         page = Page.at(scene, motion, i, stem, style)
         if "forces" in scene.draw:
             heading = Heading(scene.title, "Force plans", page.label)
-            plans = group_force_plans(forces, i)
+            plans = () if unloaded(forces, i) else group_force_plans(forces, i)
             sheets = draw_force_plans(plans, heading, ident=page.ident("forces"), style=style) if plans else \
                 (draw_empty("force", heading, ident=page.ident("forces"), style=style, notes=(NO_LOAD,)),)
             for k, svg in enumerate(sheets):
                 files[f"{stem}-forces{page.suffix}{'' if k == 0 else f'-{k + 1}'}.svg"] = svg
         if "lever" in scene.draw:
             heading = Heading(scene.title, "Zhukovsky's lever", page.label)
-            files[page.file("lever")] = draw_lever(levers[i], heading, ident=page.ident("lever"), style=style) \
+            files[page.file("lever")] = draw_lever(levers[i], heading, ident=page.ident("lever"), style=style,
+                                                   note=NO_LOAD if unloaded(forces, i) else "") \
                 if i in levers else draw_empty("lever", heading, ident=page.ident("lever"), style=style,
                                                notes=(AT_REST,))
     return files, levers
@@ -68,23 +67,34 @@ def force_sheets(scene: Scene, motion: Motion, forces: Forces, scales: Scales, o
 
 def force_warnings(scene: Scene, motion: Motion, forces: Forces, levers: dict[int, Lever], own: Iterable[int],
                    path: str) -> list[str]:
-    """One warning per force sheet drawn empty: no load in effect (force plans), the mechanism at
-    rest (the lever has no velocity plan to turn), a lever with no load on it."""
+    """A warning for the force sheets drawn without a load (no load in effect: the force plans
+    hold no polygon, the lever no force; one line for both when they are at the same positions)
+    and one for levers of a mechanism at rest (no velocity plan to turn)."""
     out = []
     own = list(own)
-    if "forces" in scene.draw:
-        empty = [i for i in own if not group_force_plans(forces, i)]
-        if empty:
-            out.append(f"{path}: force plans at {_values(motion, empty)}: {NO_LOAD}; the sheet says so")
-    if "lever" in scene.draw:
-        still = [i for i in own if i not in levers]
-        if still:
-            out.append(f"{path}: Zhukovsky's lever at {_values(motion, still)}: {AT_REST}; the sheet says so")
-        bare = [i for i in own if i in levers and not any(f.kind != "balance" for f in levers[i].forces)]
-        if bare:
-            out.append(f"{path}: Zhukovsky's lever at {_values(motion, bare)}: no load in effect, the balancing "
-                       "element is 0 (the lever is drawn with it)")
+    bare = [i for i in own if unloaded(forces, i)]
+    plans = bare if "forces" in scene.draw else []
+    still = [i for i in own if i not in levers] if "lever" in scene.draw else []
+    drawn = [i for i in bare if i in levers] if "lever" in scene.draw else []
+    if plans and plans == drawn:
+        out.append(f"{path}: force plans and Zhukovsky's lever at {_values(motion, bare)}: {NO_LOAD}; the sheets say "
+                   "so (the lever is the turned plan with no force on it)")
+    else:
+        if plans:
+            out.append(f"{path}: force plans at {_values(motion, plans)}: {NO_LOAD}; the sheet says so")
+        if drawn:
+            out.append(f"{path}: Zhukovsky's lever at {_values(motion, drawn)}: {NO_LOAD}; the sheet says so (the "
+                       "turned plan with no force on it)")
+    if still:
+        out.append(f"{path}: Zhukovsky's lever at {_values(motion, still)}: {AT_REST}; the sheet says so")
     return out
+
+
+def unloaded(forces: Forces, i: int) -> bool:
+    """Whether no load is in effect at position ``i``: every given force and couple (inertia and
+    weights included) is 0 there (:data:`~plans.kinetostatics.MIN_LOAD`)."""
+    return not any(l.force[i].any() for l in forces.loads if l.kind != "balance") and \
+        not any(c.moment[i] for c in forces.couples if c.kind != "balance")
 
 
 def _values(motion: Motion, positions: list[int]) -> str:
@@ -97,16 +107,10 @@ def _lever_at(motion: Motion, forces: Forces, i: int, mu_v: float, path: str) ->
     plan = velocity_plan(motion, i, mu_v)
     mu = lever_plan_scale(plan)
     result = lever(motion, forces, i, plan if mu == mu_v else velocity_plan(motion, i, mu))
-    # the scale of the figures: the loads times the plan's size, Σ|F|·max|p x| (≈ Σ|F|·max|v|/ω1: the
-    # rounding of every velocity is relative to the largest), over the lever moment of a unit
-    # balancing element; so a balancing element near zero (an extreme position, where the loaded
-    # point is at rest) is compared with what the loads could give, not with its own rounding
-    pole = result.pole_xy
-    size = max([math.dist(p.xy, pole) for p in result.points] + [0.0])
-    reach = sum(f.value for f in result.forces if f.kind != "balance") * size
-    scale = reach / abs(result.unit_moment) if result.unit_moment else 0.0
-    if abs(result.result - float(forces.balance.value[i])) > LEVER_RTOL * max(scale, abs(result.result)) \
-            + LEVER_ATOL:
+    # against the scale of the loads' moments, not the element's own size: near an extreme
+    # position (the loaded point at rest) the element is itself rounding of that scale
+    if abs(result.result - float(forces.balance.value[i])) > LEVER_RTOL * max(lever_scale(result),
+                                                                              abs(result.result)):
         unit = "°" if motion.mechanism.drive.kind.angular else " m"
         raise PlansError(f"{path}: Zhukovsky's lever gives {result.result:.12g} at {motion.values[i]:g}{unit}, the "
                          f"group-by-group analysis {float(forces.balance.value[i]):.12g} (please report this scene)")
