@@ -238,14 +238,16 @@ def test_a_short_step_before_a_requested_value_is_no_jump():
 
 def test_near_the_coupler_drive_dead_position_the_warning_measures_the_distance():
     """The coupler's smallest angle over a crank turn of the crank-driven four-bar (closed
-    form, sampled finely and refined) is the coupler drive's dead position: 29° lies near it,
-    and the warning's distance is 29° minus that angle."""
+    form, sampled finely) is the coupler drive's dead position (28.2569°): 28.258° lies within
+    the warning's reach of it (its figure, the sine of the angle between crank and rocker, is
+    below WARN_SIN), and the warning's distance is 28.258° minus that angle (the search's first
+    step, 0.05°, is shortened until it can pose either side)."""
     text = FOUR_BAR.read_text()
     crank = np.linspace(60.0, 140.0, 8001)
     by_crank = _solve(text, crank, 0)
     low = float(np.min(_angle(by_crank, "A", "B")))
     mech = build_mechanism(parse_scene(COUPLER.read_text()))
-    motion = analyse(mech, analyse_structure(mech), np.array([29.0]), order=1)
+    motion = analyse(mech, analyse_structure(mech), np.array([28.258]), order=1)
     assert abs(float(motion.sines["I(0-1-2-3)"][0])) < 0.01
     away = motion.singular_distance("I(0-1-2-3)", 0)
-    assert away == pytest.approx(29.0 - low, rel=0.05)
+    assert away == pytest.approx(28.258 - low, rel=0.05)

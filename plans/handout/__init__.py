@@ -36,11 +36,11 @@ from __future__ import annotations
 from .draws import random_variants
 from .solving import group_margins, solve_variant, variant_data, variant_scene, worst_sine
 from .toml_text import to_toml
-from .variants import (ANGLE_STEP_DEG, LENGTH_SPREAD, MARGIN_SIN, MAX_TRIES, MAX_VARIANTS, SINE_GROUPS,
+from .variants import (ANGLE_STEP_DEG, LENGTH_SPREAD, MARGIN_SIN, MAX_TRIES, MAX_VARIANTS,
                        SPEED_RANGE, SPEED_SERIES, Drawn, Handout, Variant, margin_text, read_base, read_variants)
 from .writing import INDEX, VARIANTS, Progress, write_handout
 
 __all__ = ["MARGIN_SIN", "LENGTH_SPREAD", "ANGLE_STEP_DEG", "SPEED_SERIES", "MAX_VARIANTS", "MAX_TRIES",
            "Variant", "Handout", "Drawn", "read_variants", "read_base", "random_variants", "variant_scene",
-           "solve_variant", "write_handout", "Progress", "to_toml", "SINE_GROUPS", "SPEED_RANGE", "INDEX", "VARIANTS",
+           "solve_variant", "write_handout", "Progress", "to_toml", "SPEED_RANGE", "INDEX", "VARIANTS",
            "margin_text", "variant_data", "worst_sine", "group_margins"]

@@ -1,7 +1,7 @@
 """A variant solved: its scene data (the base's with the variant's lengths and drive), its
 scene, its rendered sheets, and the margin from singular positions each group must keep.
 
-Knows :mod:`.variants`, the scene reader, the pipeline and the kinematics' WARN_SIN; must not
+Knows :mod:`.variants`, the scene reader and the pipeline; must not
 import the random draws, the writing, the index page, the drawing or the command line.
 """
 
@@ -13,10 +13,9 @@ from typing import Mapping
 import numpy as np
 
 from ..errors import PlansError, SceneError
-from ..kinematics import WARN_SIN
 from ..pipeline import Sheets, render
 from ..scene import Scene, parse_scene
-from .variants import MARGIN_SIN, SINE_GROUPS, Drawn, Handout, Variant
+from .variants import MARGIN_SIN, Drawn, Handout, Variant
 
 __all__ = ["VariantError", "variant_data", "variant_scene", "solve_variant", "worst_sine", "group_margins",
            "short_of"]
@@ -88,13 +87,9 @@ def worst_sine(sheets: Sheets) -> float:
 
 
 def group_margins(base: Sheets, margin: float = MARGIN_SIN) -> dict[str, float]:
-    """The margin each group of the base scene must keep: ``margin`` for a group whose figure is
-    a sine (SINE_GROUPS), else half the base's smallest |figure|, within WARN_SIN…margin."""
-    out = {}
-    for g, s in base.motion.sines.items():
-        own = 0.5 * float(np.min(np.abs(s)))
-        out[g] = margin if g.startswith(SINE_GROUPS) else min(margin, max(WARN_SIN, own))
-    return out
+    """The margin each group of the base scene must keep: ``margin`` for every group, whose
+    figures all mean the same closeness to a singular position (plans.kinematics.figure)."""
+    return {g: margin for g in base.motion.sines}
 
 
 def short_of(sheets: Sheets, margins: Mapping[str, float]) -> str:

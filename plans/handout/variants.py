@@ -18,19 +18,15 @@ from ..pipeline import Sheets
 from ..scene import Scene, as_float, parse_scene, parse_toml, read_text
 from ..scene.checks import SHOW
 
-__all__ = ["MARGIN_SIN", "SINE_GROUPS", "LENGTH_SPREAD", "ANGLE_STEP_DEG", "SPEED_SERIES", "SPEED_RANGE",
+__all__ = ["MARGIN_SIN", "LENGTH_SPREAD", "ANGLE_STEP_DEG", "SPEED_SERIES", "SPEED_RANGE",
            "MAX_VARIANTS", "MAX_TRIES", "Variant", "Handout", "Drawn", "read_base", "read_variants", "margin_text"]
 
 #: Margin of the random mode: every asked position of every drawn variant has, in every group,
-#: |condition| ≥ this (``Motion.sines``: the normalised determinant of the group's velocity
-#: equations, 0 at a singular position; plans warns below WARN_SIN = 1e-2). 0.1 keeps the
-#: unknown directions at least 5.7° from parallel.
+#: |condition| ≥ this (``Motion.sines``: the sine of a class II group's transmission angle, and
+#: the same figure generalised for every other group, 0 at a singular position; plans warns
+#: below WARN_SIN = 1e-2). 0.1 keeps the group's links at least 5.7° from a dead position's
+#: alignment.
 MARGIN_SIN = 0.1
-#: Groups whose condition figure is a sine (class II closed forms, class III groups); the others
-#: (class IV groups, a drive inside the chain) report σmin/σmax of a Newton Jacobian, which is
-#: small even far from a singular position (0.02–0.05 in the examples): for them the margin is
-#: half the base scene's own smallest figure, between WARN_SIN and MARGIN_SIN.
-SINE_GROUPS = ("II(", "III(")
 #: Random lengths: the base's × U(1 − spread, 1 + spread).
 LENGTH_SPREAD = 0.2
 #: Random crank angles: multiples of this over the turn, degrees.

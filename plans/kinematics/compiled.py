@@ -20,6 +20,7 @@ from typing import Mapping
 import numpy as np
 
 from ..model import Mechanism
+from .figure import polar_sine
 from .generic import TOLERANCE
 from .tolerances import MAX_ITER
 from .state import LinkState, cos_sin
@@ -390,41 +391,23 @@ class CompiledGroup:
             out[late], out_res[late], conv[late] = qn, rn, cn
         return out, out_res, conv, it
 
-    def crossing_figure(self, q: np.ndarray, idx: np.ndarray, floor: float = 1e-5) -> np.ndarray:
-        """A stand-in for the condition figure sign(det A)·σ_min/σ_max at poses ``q``, for
-        the walk's crossing test only: the same sign, and the same value wherever the
-        figure could be below ``floor``; elsewhere a lower bound of it (above ``floor``),
-        σ_min ≥ |det A|·((n−1)/‖A‖_F²)^((n−1)/2) (Hong & Pan) and σ_max ≤ ‖A‖_F."""
-        n = self.n
+    def condition(self, q: np.ndarray, idx: np.ndarray) -> np.ndarray | None:
+        """The condition figure at poses ``q`` (N,) of a group of revolute pairs only, as
+        :meth:`GroupEquations.condition <plans.kinematics.generic.GroupEquations.condition>`
+        gives it: sign(det A) × the polar sine of Q₂ᵀ·B (k×k per position; see :meth:`_reduced`);
+        None for a group with a prismatic pair (its figure needs the pairs' directions)."""
         reduced = self._reduced()
         if reduced is None:
-            _, a = self.evaluate(q, idx)
-            sign, logdet = np.linalg.slogdet(a)
-            log_f = 0.5 * np.log(np.einsum("mij,mij->m", a, a))
-        else:
-            # revolute pairs only: A's translation columns T are constant, so with T = Q·[R; 0]
-            # (once), det A = c0·det(Q₂ᵀ·B), B the k angle columns (Q₂ᵀB: k×k per position)
-            c0_sign, c0_log, t_norm2, p_s, p_c = reduced
-            th = q[:, 2::3]
-            c, s = _cos_sin(th)
-            det = _det(c[:, None, :] * p_s - s[:, None, :] * p_c)
-            sign = c0_sign * np.sign(det)
-            b = c[:, None, :] * self._js - s[:, None, :] * self._jc
-            with np.errstate(divide="ignore"):
-                logdet = c0_log + np.log(np.abs(det))
-            log_f = 0.5 * np.log(t_norm2 + np.einsum("mij,mij->m", b, b))
-        with np.errstate(all="ignore"):
-            bound = np.exp(logdet + 0.5 * (n - 1) * (np.log(n - 1) - 2.0 * log_f) - log_f)
-        bound = np.where(np.isfinite(bound), bound, 0.0)
-        low = np.flatnonzero(bound < floor)
-        if low.size:
-            sv = np.linalg.svd(self.evaluate(q[low], idx[low])[1], compute_uv=False)
-            bound[low] = sv[:, -1] / sv[:, 0]
-        return sign * bound
+            return None
+        c0_sign, p_s, p_c = reduced
+        c, s = _cos_sin(q[:, 2::3])
+        m = c[:, None, :] * p_s - s[:, None, :] * p_c
+        det = _det(m)
+        return c0_sign * np.sign(det) * polar_sine(m, det)
 
     def _block_solver(self, q: np.ndarray):
         """x ↦ A⁻¹x (M, n) with A the scaled Jacobian at poses ``q`` of a revolute-only group."""
-        _, _, _, p_s, p_c = self._reduced_
+        _, p_s, p_c = self._reduced_
         q1t, r1_inv_t, q1_js, q1_jc = self._blocks
         th = q[:, 2::3]
         c, s = _cos_sin(th)
@@ -444,9 +427,9 @@ class CompiledGroup:
         return solve
 
     def _reduced(self):
-        """For a group of revolute pairs only (else None): the constant factor of det A
-        (its sign and log), ‖T‖_F² of the constant translation columns T, and Q₂ᵀ·Js, Q₂ᵀ·Jc,
-        Q₂ the orthogonal complement of T's columns (see :meth:`crossing_figure`)."""
+        """For a group of revolute pairs only (else None): the sign of det A's constant factor,
+        and Q₂ᵀ·Js, Q₂ᵀ·Jc, Q₂ the orthogonal complement of the constant translation columns T
+        (T = Q·[R; 0] once; then det A = c0·det(Q₂ᵀ·B), B the k angle columns)."""
         if "_reduced_" in self.__dict__:
             return self._reduced_
         out = None
@@ -466,8 +449,7 @@ class CompiledGroup:
                 perm = np.eye(n)[:, order]
                 c0 = np.linalg.det(perm) * np.linalg.det(qm)
                 q2 = qm[:, 2 * k:]
-                out = (float(np.sign(c0) * np.prod(np.sign(diag))), float(np.sum(np.log(np.abs(diag)))),
-                       float(np.sum(t * t)), q2.T @ self._js, q2.T @ self._jc)
+                out = (float(np.sign(c0) * np.prod(np.sign(diag))), q2.T @ self._js, q2.T @ self._jc)
                 q1 = qm[:, :2 * k]
                 self._blocks = (np.ascontiguousarray(qm), np.ascontiguousarray(np.linalg.inv(r[:2 * k]).T),
                                 q1.T @ self._js, q1.T @ self._jc)
@@ -477,9 +459,3 @@ class CompiledGroup:
                 _REDUCED.clear()
             _REDUCED[key] = out, self.__dict__.get("_blocks")
         return out
-
-    def condition(self, q: np.ndarray, idx: np.ndarray) -> np.ndarray:
-        """sign(det A)·σ_min/σ_max of the scaled Jacobian (as GroupEquations.condition)."""
-        _, a = self.evaluate(q, idx)
-        sv = np.linalg.svd(a, compute_uv=False)
-        return np.sign(np.linalg.det(a)) * sv[:, -1] / sv[:, 0]

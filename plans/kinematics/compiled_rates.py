@@ -1,5 +1,5 @@
 """A class III/IV group's rates: :class:`GroupRates` solves its velocities and accelerations at
-the requested positions with the compiled Jacobian (which also gives the condition figure).
+the requested positions with the compiled Jacobian (and the condition figure from its reduced blocks).
 """
 
 from __future__ import annotations
@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..model import Mechanism
-from .compiled import CompiledGroup, States, _cos_sin, _det, _product
+from .compiled import CompiledGroup, States, _cos_sin, _product
 from .generic import GroupEquations, _with_rates
 from .state import LinkState, _spin
 
@@ -16,8 +16,8 @@ __all__ = ["GroupRates"]
 
 class GroupRates:
     """A class III/IV group's velocity and acceleration solves at its solved poses, sharing
-    one scaled Jacobian A (the compiled group's, :meth:`CompiledGroup.evaluate`), which also
-    gives the condition figure; for a group of revolute pairs only, right-hand sides assembled
+    one scaled Jacobian A (the compiled group's, :meth:`CompiledGroup.evaluate`), and its
+    condition figure (:meth:`CompiledGroup.condition`); for a group of revolute pairs only, right-hand sides assembled
     from the known links' pin motions without the generic per-pair terms (a group with a
     prismatic pair takes them from :class:`~plans.kinematics.generic.GroupEquations`).
 
@@ -32,6 +32,7 @@ class GroupRates:
         self.mech = mech
         self.links = tuple(links)
         self.pairs = tuple(pairs)
+        self.states = states
         known = {name: s for name, s in states.items() if name not in self.links}
         self.group = group = CompiledGroup(mech, self.links, self.pairs, known)
         self.size = group.size
@@ -53,18 +54,12 @@ class GroupRates:
         return self._a
 
     def condition(self) -> np.ndarray:
-        """sign(det A)·σ_min/σ_max of the scaled Jacobian (as GroupEquations.condition)."""
-        a = self.jacobian()
-        sv = np.linalg.svd(a, compute_uv=False)
-        reduced = self.group._reduced()
-        if reduced is None:
-            sign = np.sign(np.linalg.det(a))
-        else:     # det A = c0·det(Q₂ᵀB) (see CompiledGroup.crossing_figure): its sign, from k×k blocks
-            c0_sign, _, _, p_s, p_c = reduced
-            th = self.q[:, 2::3]
-            c, s = _cos_sin(th)
-            sign = c0_sign * np.sign(_det(c[:, None, :] * p_s - s[:, None, :] * p_c))
-        return sign * sv[:, -1] / sv[:, 0]
+        """The condition figure at the poses (as GroupEquations.condition): from the compiled
+        k×k blocks for a group of revolute pairs only, else from the pair equations."""
+        figure = self.group.condition(self.q, self.idx)
+        if figure is None:
+            figure = GroupEquations(self.mech, self.links, self.pairs).condition(self.states)
+        return figure
 
     def _solve(self, rhs: np.ndarray) -> np.ndarray:
         """The group's rates x (N, n) from A·x = −rhs (rhs scaled as A's rows; x unscaled)."""

@@ -101,6 +101,17 @@ class DrivenEquations(GroupEquations):
         p, xs, yg, u = self._slide(states)
         return self._offset_rate(p, states, xs, yg, u, order)
 
+    def _figure_rows(self, states: States, a: np.ndarray):
+        """As for a group (the reduced figure's rows), with the drive: a coupler turned by it, or
+        the cylinder's stroke given (its offset along the guide is the drive's row: no sliding
+        rate is unknown)."""
+        rows, ties, sliding = super()._figure_rows(states, a)
+        if self.angular:
+            ties.append((self.drive.link, None))
+        else:
+            sliding = [(r, p) for r, p in sliding if p != self.drive.guide]
+        return rows, ties, sliding
+
     def _scale_rows(self, m: np.ndarray) -> np.ndarray:
         """As for a group, and a coupler's angle row ×size too (every entry dimensionless)."""
         m = super()._scale_rows(m)

@@ -15,8 +15,9 @@ the quadratic (normal, Coriolis) terms form the right-hand side:
     A·q̇ = −Φ̇|q̇=0        A·q̈ = −Φ̈|q̈=0
 
 solved for all positions at once with ``numpy.linalg.solve``. The condition figure of a
-position is ``sign(det A)·σ_min/σ_max`` of A made dimensionless with the mechanism's size (1 = well conditioned, 0 = singular; the sign changes across a singular
-position).
+position is sign(det A) times the polar sine of the equations reduced to the group's turning
+and sliding rates (:mod:`plans.kinematics.figure`): a class II group's sin(U1, U2) generalised
+(1 = well conditioned, 0 = singular; the sign changes across a singular position).
 """
 
 from __future__ import annotations
@@ -27,6 +28,7 @@ from typing import Mapping
 import numpy as np
 
 from ..model import Mechanism
+from .figure import reduced_figure
 from .state import J, LinkState
 from .tolerances import MAX_ITER, NEWTON_RTOL
 
@@ -210,12 +212,62 @@ class GroupEquations:
         return self._scaled(self.jacobian(states))
 
     def condition(self, states: States, a: np.ndarray | None = None) -> np.ndarray:
-        """sign(det A)·σ_min/σ_max of the scaled Jacobian at every position (N,); ``a``: that
-        Jacobian, when already at hand."""
+        """The condition figure at every position (N,): sign(det A) × the polar sine of the
+        reduced velocity equations (:func:`~plans.kinematics.figure.reduced_figure`), or, should
+        those not be square, σ_min/σ_max of A; ``a``: the scaled Jacobian, when already at hand."""
         if a is None:
             a = self._scaled(self.jacobian(states))
-        sv = np.linalg.svd(a, compute_uv=False)
-        return np.sign(np.linalg.det(a)) * sv[:, -1] / sv[:, 0]
+        rows, ties, sliding = self._figure_rows(states, a)
+        figure = reduced_figure(np.stack(rows, axis=1), self._turning_sets(ties), [r for r, _ in sliding])
+        if figure is None:
+            sv = np.linalg.svd(a, compute_uv=False)
+            figure = sv[:, -1] / sv[:, 0]
+        return np.sign(np.linalg.det(a)) * figure
+
+    def _figure_rows(self, states: States, a: np.ndarray) -> tuple[list[np.ndarray], list[tuple[str, str | None]], list]:
+        """The rows of the reduced figure (scaled as ``a``'s), the links each angle row turns
+        together (None: a known link), and (row, pair) of each prismatic pair's sliding: its
+        normal row, then its offset along the guide (whose rate is the sliding)."""
+        rows: list[np.ndarray] = []
+        ties: list[tuple[str, str | None]] = []
+        sliding: list = []
+        for k, pair in enumerate(self.pairs):
+            if pair.kind == "R":
+                rows += [a[:, 2 * k], a[:, 2 * k + 1]]
+                continue
+            p = pair.prismatic
+            ties.append((p.slider, p.guide))
+            xs, yg, _ = self._geometry(pair, states)
+            along = np.zeros_like(a[:, 0])
+            self._offset_jacobian(along, p, states, xs, yg, states[p.guide].direction(p.direction))
+            along[:, 2::3] /= self.size
+            rows += [a[:, 2 * k + 1], along]
+            sliding.append((len(rows) - 1, p))
+        return rows, ties, sliding
+
+    def _turning_sets(self, ties: list[tuple[str, str | None]]) -> np.ndarray:
+        """(3k, c): a column per set of the group's links that turn together by ``ties`` and
+        with no known link, 1 in its links' turning columns."""
+        root = {name: name for name in self.links}
+
+        def find(x: str) -> str:
+            while root[x] != x:
+                x = root[x]
+            return x
+        held = []
+        for pair in ties:
+            inside = [x for x in pair if x in self.col]
+            if len(inside) == 2:
+                root[find(inside[0])] = find(inside[1])
+            elif inside:        # turned with a known link (or by the drive)
+                held.append(inside[0])
+        held_roots = {find(x) for x in held}
+        free = list(dict.fromkeys(find(x) for x in self.links if find(x) not in held_roots))
+        sets = np.zeros((3 * len(self.links), len(free)))
+        for name in self.links:
+            if find(name) in free:
+                sets[self.col[name] + 2, free.index(find(name))] = 1.0
+        return sets
 
     # -- solves --------------------------------------------------------------------------
     def _solve(self, states: States, rhs: np.ndarray, a: np.ndarray | None = None) -> np.ndarray:

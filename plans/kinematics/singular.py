@@ -24,7 +24,13 @@ from .kinds import GroupSolver, Seed, chain
 from .state import LinkState, Solution
 from .walk import drive_states, step
 
-__all__ = ["distance", "LocalPoser"]
+__all__ = ["distance", "LocalPoser", "FIRST_SHORTENINGS"]
+
+#: How often the search's first step (0.05° or 1e-4 × size) is quartered when neither side can
+#: be posed: a few hundredths of a degree from a limit position (where the near-singular warning
+#: begins) a step of 0.05° either passes the limit or lands on the other branch (the pose moves
+#: like the square root of the distance there); 8 quarterings reach 1e-6°.
+FIRST_SHORTENINGS = 9
 
 
 class LocalPoser:
@@ -98,7 +104,8 @@ def distance(motion: Solution, group: str, i: int) -> float | None:
     of ``motion`` (degrees for a crank, metres for a slider), or None when none is found
     nearby. Secant steps on the squared condition figure c², which falls to zero linearly
     at a limit position and quadratically where branches cross; a step that lands past a
-    limit position (or past c's sign change) is halved back towards the last good value."""
+    limit position (or past c's sign change) is halved back towards the last good value; the
+    first step is shortened (FIRST_SHORTENINGS) while neither side of position i can be posed."""
     mech = motion.mechanism
     h = 0.05 if mech.drive.kind.angular else 1e-4 * mech.size
     poser = LocalPoser(motion, group, i)
@@ -109,10 +116,15 @@ def distance(motion: Solution, group: str, i: int) -> float | None:
 
     start = float(motion.values[i])
     x0, f0 = start, float(motion.sines[group][i]) ** 2
-    x1 = start + h
-    f1 = f(x1)
-    if f1 is None:
-        x1, f1 = start - h, f(start - h)
+    x1, f1 = start, None
+    for _ in range(FIRST_SHORTENINGS):
+        for x1 in (start + h, start - h):
+            f1 = f(x1)
+            if f1 is not None:
+                break
+        if f1 is not None:
+            break
+        h /= 4.0
     for _ in range(16):
         if f1 is None or f1 == f0:
             return None

@@ -177,8 +177,9 @@ class Solution:
     users read, :class:`plans.kinematics.motion.Motion`, adds those on top.
 
     ``values`` are the drive's values as requested (degrees or metres); ``order`` is 0
-    (positions), 1 (+ velocities) or 2 (+ accelerations); ``sines`` holds, per group, the
-    normalised determinant of its velocity equations (1 = well conditioned, 0 = singular).
+    (positions), 1 (+ velocities) or 2 (+ accelerations); ``sines`` holds, per group, its
+    condition figure: the sine of its transmission angle, generalised (:mod:`plans.kinematics.figure`;
+    the rods' axes for a class III group), 1 = well conditioned, 0 = singular.
     """
 
     mechanism: "object"

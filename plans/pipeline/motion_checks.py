@@ -27,7 +27,8 @@ def check_triads(motion: Motion, path: str) -> None:
 def motion_warnings(scene: Scene, motion: Motion, rest: tuple[bool, bool], stem: str) -> list[str]:
     """The warnings, in order: the plans drawn as sheets saying the mechanism is at rest
     (``rest`` from :func:`~plans.pipeline.rest.at_rest`), then each position where a group's
-    condition (the sine between its axes) is below WARN_SIN."""
+    condition figure (the sine of its transmission angle, generalised: the same closeness to a
+    dead position for every kind of group) is below WARN_SIN."""
     warnings = []
     resting = [k for k, r in zip(("velocity", "acceleration"), rest) if r and k in scene.draw]
     if resting:

@@ -4,7 +4,8 @@
 A class III group whose rods all have an axis also has special points (Assur's points, where
 two rods' axes meet): its condition figure is then the determinant of the axes' line
 coordinates (:func:`plans.kinematics.special.condition`), which vanishes exactly when the
-three axes meet in one point.
+three axes meet in one point. Any other group's is the sine of its velocity equations reduced
+to its turning and sliding rates (:mod:`plans.kinematics.figure`), as a class II group's is.
 """
 
 from __future__ import annotations
@@ -56,24 +57,29 @@ class Complex:
 
     def _walk_condition(self, states: States, group: CompiledGroup | None) -> np.ndarray:
         """The condition figure along the walk, for the crossing check: the special points'
-        (cheap), else the compiled group's stand-in with the same sign and the same value
-        wherever it is small."""
+        (cheap), else the compiled group's (the walk's own, when at hand)."""
         if self.axes:
             return special.condition(self.group, self.mech, states)
         if group is None:     # the walk's own compiled group (the same known links), when at hand
             eq = self.eq
             known = {name: s for name, s in states.items() if name not in eq.col}
             group = CompiledGroup(self.mech, eq.links, eq.pairs, known)
-        return group.crossing_figure(self.eq.pose(states), np.arange(group.n_pos))
+        return self._figure(states, group)
+
+    def _figure(self, states: States, group: CompiledGroup) -> np.ndarray:
+        """The figure of :mod:`plans.kinematics.figure`: from the compiled blocks for a group of
+        revolute pairs only, else from the pair equations."""
+        figure = group.condition(self.eq.pose(states), np.arange(group.n_pos))
+        return self.eq.condition(states) if figure is None else figure
 
     def condition(self, states: States, values: np.ndarray | None = None) -> np.ndarray:
-        """The rods' axes for a class III group, else the scaled Jacobian's σ_min/σ_max (±)."""
+        """The rods' axes for a class III group, else the generalised sine of the group's
+        velocity equations (:mod:`plans.kinematics.figure`; ±, 0 at a singular position)."""
         if self.axes:
             return special.condition(self.group, self.mech, states)
         eq = self.eq
         known = {name: s for name, s in states.items() if name not in eq.col}
-        return CompiledGroup(self.mech, eq.links, eq.pairs, known).condition(
-            eq.pose(states), np.arange(len(states[self.group.links[0]].theta)))
+        return self._figure(states, CompiledGroup(self.mech, eq.links, eq.pairs, known))
 
     def rates(self, states: dict[str, LinkState], values: np.ndarray, pre: dict | None = None) -> Rates:
         g = self.group

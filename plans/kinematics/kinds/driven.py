@@ -98,7 +98,8 @@ class Driven:
         return f"; the cylinder's length {pa}{pb} = {float(length):g} m"
 
     def condition(self, states: States, values: np.ndarray) -> np.ndarray:
-        """sign(det A)·σ_min/σ_max of the scaled Jacobian of the pairs' and the drive's equations."""
+        """The generalised sine of the pairs' and the drive's velocity equations reduced to the
+        links' turning and sliding rates (:mod:`plans.kinematics.figure`), with det A's sign."""
         return self._equations(values).condition(states)
 
     def rates(self, states: dict[str, LinkState], values: np.ndarray, pre: dict | None = None) -> Rates:
