@@ -84,7 +84,7 @@ def _parse(data: Mapping[str, Any], file: str | None) -> Scene:
     if gears is None and "gears" in draw:
         raise SceneError('"gears" draws a gear train, and the scene has no [gears]; remove it from draw',
                          key="plans.draw")
-    cycle = read_cycle(cycle_keys, drive, plans_table, draw, points, links)
+    cycle = read_cycle(cycle_keys, drive, plans_table, draw, points, links, sliders)
     scales = read_scales(subtable(data, "scales"))
     masses = read_masses(subtable(data, "masses"), links)
     forces = read_forces(data.get("forces", []), links)

@@ -7,12 +7,12 @@ Imports only plans.errors and modules of plans.scene (and the standard library).
 
 from __future__ import annotations
 
-from typing import Any, Mapping
+from typing import Any, Mapping, Sequence
 
 from ..errors import SceneError
 from .checks import SHOW
 from .values import (CYCLE_SHEETS, CYCLE_STARTS, DEFAULT_DRAW, DRAWABLE, FRAME, MAX_POSITIONS, MAX_VELOCITY_PLANS,
-                     MIN_CYCLE_POSITIONS, Cycle, Drive)
+                     MIN_CYCLE_POSITIONS, Cycle, Drive, Slider)
 
 
 def read_draw(table: Mapping[str, Any]) -> tuple[tuple[str, ...], bool]:
@@ -55,8 +55,22 @@ def cycle_positions(cycle: Mapping[str, Any]) -> int:
     return n
 
 
+def _default_output(drive: Drive, links: Mapping[str, tuple[str, ...]], sliders: Sequence[Slider]) -> str:
+    """The cycle's output when ``[plans] output`` is not given: the last moving link; when that
+    is the driving link, the last other one that turns about a frame pivot or slides on a frame
+    guide (the driving link when there is none)."""
+    moving = [name for name in links if name != FRAME]
+    if moving[-1] != drive.link:
+        return moving[-1]
+    frame = set(links[FRAME]) if FRAME in links else set()
+    able = [n for n in moving if n != drive.link and (set(links[n]) & frame or any(
+        s.link == n and s.on == FRAME for s in sliders))]
+    return able[-1] if able else drive.link
+
+
 def read_cycle(keys: Mapping[str, Any], drive: Drive, plans: Mapping[str, Any], draw: tuple[str, ...],
-               points: Mapping[str, Any], links: Mapping[str, tuple[str, ...]]) -> Cycle | None:
+               points: Mapping[str, Any], links: Mapping[str, tuple[str, ...]],
+               sliders: Sequence[Slider] = ()) -> Cycle | None:
     """The cycle of ``[drive] positions`` with ``[plans] output`` and ``trace``; None without
     positions (then the cycle sheets and keys are refused)."""
     if not keys:
@@ -80,16 +94,21 @@ def read_cycle(keys: Mapping[str, Any], drive: Drive, plans: Mapping[str, Any], 
         raise SceneError("the kinematic diagrams take ω1 constant (t = φ/ω1): give epsilon = 0 or leave "
                          "\"diagrams\" out of draw", key="drive.epsilon")
     moving = [name for name in links if name != FRAME]
-    output = plans.get("output", moving[-1] if moving else "")
+    driven = [name for name in moving if name != drive.link]
+    output = plans.get("output", _default_output(drive, links, sliders) if moving else "")
     if output not in moving:
         raise SceneError(f"output names the output link of the cycle, one of the moving links "
                          f"{', '.join(moving)} (a string, e.g. \"{moving[-1]}\"); got {SHOW.repr(output)}",
                          key="plans.output")
     if output == drive.link and "output" in plans:
-        others = [m for m in moving if m != drive.link]
+        fix = f'name the driven link whose motion the cycle shows, e.g. "{driven[-1]}"' if driven else \
+            "the mechanism has no other moving link: remove output"
         raise SceneError(f"output {output!r} is the driving link itself, whose angle is the cycle's time axis (its "
-                         f"diagrams would be a straight line and its stroke the whole turn); name the driven link "
-                         f"whose motion the cycle shows, e.g. \"{others[-1] if others else output}\"", key="plans.output")
+                         f"diagrams would be a straight line and its stroke the whole turn); {fix}", key="plans.output")
+    if output == drive.link and "diagrams" in draw:
+        raise SceneError(f"the kinematic diagrams show a driven link's motion against the crank's angle, and no "
+                         f"moving link but the driving link {output} turns about a frame pivot or slides on a frame "
+                         "guide; leave \"diagrams\" out of draw", key="plans.draw")
     trace = plans.get("trace", [])
     if not isinstance(trace, list) or not all(isinstance(p, str) for p in trace):
         raise SceneError(f'trace is a list of point names, e.g. ["C"]; got {SHOW.repr(trace)}', key="plans.trace")
