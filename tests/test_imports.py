@@ -25,6 +25,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("plans.structure",),
     ("plans.kinematics", "plans.gears"),
     ("plans.kinetostatics",),
+    ("plans.dynamics",),
     ("plans.constructions",),
     ("plans.drawing",),
     ("plans.checking", "plans.checking_read", "plans.checking_gears", "plans.checking_report", "plans.checking_geometry", "plans.layout",

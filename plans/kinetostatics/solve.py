@@ -44,7 +44,7 @@ from ..scene import FRAME, Scene
 from ..structure import ComplexGroup, DrivenGroup, Group, Pair
 # every name importable from this module before the split stays importable from here
 from .balance import _BalanceSpec, _balance_spec, _power
-from .loads import Couple, Load
+from .loads import Couple, Load, Travel
 from .pairs import _Geometry, _Pair, _split, _unit
 from .results import Balancing, Forces, ForceTerm, GroupForces, Reaction
 from .solver import POINT_RTOL, SINGULAR_COND, _Solver
@@ -53,13 +53,14 @@ __all__ = ["ForceTerm", "GroupForces", "Reaction", "Balancing", "Forces", "solve
            "POINT_RTOL"]
 
 
-def solve_forces(motion: Motion, scene: Scene, *, closed_forms: bool = True) -> Forces:
+def solve_forces(motion: Motion, scene: Scene, *, closed_forms: bool = True, travel: Travel | None = None) -> Forces:
     """The force analysis of ``scene`` on its solved ``motion`` (order 2 when a link has a
-    mass or an inertia, order ≥ 1 for the power balance; order 0 gives no power check).
+    mass or an inertia, order ≥ 1 for the power balance; order 0 gives no power check);
+    ``travel``: the output's travel at the motion's positions, for forces with a law or a stroke.
 
     ``closed_forms=False`` solves the class II groups as linear systems too (the tests compare
     the two); their polygons then carry whole reactions, without the ``:n``/``:t`` split."""
-    s = _Solver(motion, scene)
+    s = _Solver(motion, scene, travel)
     mech, structure = s.mech, motion.structure
     for g in reversed(structure.groups):
         if isinstance(g, Group) and closed_forms:

@@ -17,7 +17,7 @@ from ..kinematics.walk import fmt
 from ..scene import Scene
 from ..structure import Group
 from .balance import _BalanceSpec
-from .loads import Couple, Load, applied_loads, force_sum, moment_about
+from .loads import Couple, Load, Travel, applied_loads, force_sum, moment_about
 from .pairs import _Geometry, _Pair, _split, _unit
 from .results import ForceTerm, GroupForces, Reaction
 
@@ -34,11 +34,11 @@ POINT_RTOL = 1e-12
 class _Solver:
     """Accumulates loads and solved reactions link by link while the groups are solved."""
 
-    def __init__(self, motion: Motion, scene: Scene):
+    def __init__(self, motion: Motion, scene: Scene, travel: Travel | None = None):
         self.motion = motion
         self.mech = motion.mechanism
         self.geo = _Geometry(motion)
-        self.loads, self.couples = applied_loads(motion, scene)
+        self.loads, self.couples = applied_loads(motion, scene, travel)
         self.acting: dict[str, list[Load]] = {name: [l for l in self.loads if l.link == name] for name in self.mech.links}
         self.turning: dict[str, list[Couple]] = {name: [c for c in self.couples if c.link == name]
                                                  for name in self.mech.links}

@@ -10,14 +10,18 @@ from __future__ import annotations
 import contextlib
 from typing import Iterator
 
+import numpy as np
+
+from ..dynamics import MachineDynamics, machine_dynamics
+from ..errors import SceneError
 from ..kinematics import Motion, analyse
 from ..kinematics.cycle import Cycle, solve_cycle
-from ..kinetostatics import Forces, solve_forces
+from ..kinetostatics import Forces, Travel, solve_forces
 from ..model import build_mechanism
 from ..scene import Scene
 from ..structure import analyse_structure
 
-__all__ = ["record_stages", "solve_scene", "solve_motion", "force_analysis"]
+__all__ = ["record_stages", "solve_scene", "solve_motion", "force_analysis", "output_travel", "machine_motion"]
 
 #: The stages run, in order, while :func:`record_stages` is active (None otherwise).
 _stages: list[str] | None = None
@@ -28,7 +32,7 @@ _ORDER_STAGES = ("positions", "velocities", "accelerations")
 @contextlib.contextmanager
 def record_stages() -> Iterator[list[str]]:
     """Record the computing stages each render runs (``positions``, ``velocities``,
-    ``accelerations``, ``forces``), in order, into the list it yields."""
+    ``accelerations``, ``forces``, ``dynamics``), in order, into the list it yields."""
     global _stages
     previous, _stages = _stages, []
     try:
@@ -67,9 +71,35 @@ def solve_motion(scene: Scene) -> tuple[Motion, Cycle | None]:
     return cycle.motion, cycle
 
 
-def force_analysis(scene: Scene, motion: Motion) -> Forces | None:
-    """The force analysis when the scene asks for it (force plans, the lever, or [balance])."""
+def force_analysis(scene: Scene, motion: Motion, cycle: Cycle | None = None) -> Forces | None:
+    """The force analysis when the scene asks for it (force plans, the lever, or [balance]);
+    forces that follow the output read its travel over ``cycle``."""
     if not scene.wants_forces:
         return None
     _ran("forces")
-    return solve_forces(motion, scene)
+    return solve_forces(motion, scene, travel=output_travel(scene, cycle))
+
+
+def output_travel(scene: Scene, cycle: Cycle | None) -> Travel | None:
+    """The output link's travel at the cycle's positions, when a force follows it (a law or a
+    stroke); None otherwise. A cycle whose output turns fully has no extremes to measure from:
+    refused, naming the force."""
+    follows = [f for f in scene.forces if f.follows_output]
+    if not follows or cycle is None:
+        return None
+    out, ext = cycle.output, cycle.extreme_output
+    if ext is None or out.v is None:
+        f = follows[0]
+        raise SceneError(f"the force at {f.at} follows the travel of the output link {out.link} from its extreme "
+                         f"position, and link {out.link} turns fully and has none; name a slider or a rocker in "
+                         "[plans] output", key=f"forces[{f.index}]")
+    return Travel(link=out.link, kind=out.kind, s=out.s, v=out.v, low=float(ext.s[0]), high=float(ext.s[1]),
+                  scale=float(np.max(np.abs(out.v))))
+
+
+def machine_motion(scene: Scene, cycle: Cycle | None) -> MachineDynamics | None:
+    """The machine's steady cycle under its loads, when the scene has ``[dynamics]``."""
+    if scene.dynamics is None or cycle is None:
+        return None
+    _ran("dynamics")
+    return machine_dynamics(scene, cycle)

@@ -21,10 +21,11 @@ from .values import (CYCLE_SHEETS, CYCLE_STARTS, DEFAULT_DRAW, DRAWABLE, FORCE_S
                      AppliedMoment, Balance, Cycle, Drive, DriveKind, Mass, Scene, Slider)
 from .checks import as_float
 from .gears import GearTrain, Synthesis, Wheel
+from .dynamics import Dynamics
 from .document import parse_scene
 from .file import parse_toml, read_bytes, read_scene, read_text
 
-__all__ = ["Scene", "GearTrain", "Wheel", "Synthesis", "Slider", "Drive", "DriveKind", "Cycle", "Mass", "AppliedForce", "AppliedMoment", "Balance",
+__all__ = ["Scene", "Dynamics", "GearTrain", "Wheel", "Synthesis", "Slider", "Drive", "DriveKind", "Cycle", "Mass", "AppliedForce", "AppliedMoment", "Balance",
            "read_scene", "parse_scene", "read_bytes", "read_text", "parse_toml", "as_float", "FRAME", "DRAWABLE",
            "DEFAULT_DRAW", "FORCE_SHEETS", "CYCLE_SHEETS",
            "CYCLE_STARTS", "MIN_CYCLE_POSITIONS", "MAX_VELOCITY_PLANS", "STEP_DEG", "LINEAR_STEPS_PER_SIZE",

@@ -12,6 +12,7 @@ from typing import Any, Mapping
 from ..errors import SceneError
 from .checks import SHOW, subtable, text
 from .drive import read_drive
+from .dynamics import read_dynamics
 from .gears import read_gears, read_synthesis
 from .loads import read_balance, read_forces, read_gravity, read_masses, read_moments
 from .options import read_cycle, read_draw
@@ -21,7 +22,7 @@ from .gears import GearTrain
 from .values import MAX_TITLE_CHARS, Scene
 
 _TOP_KEYS = {"title", "description", "points", "links", "sliders", "drive", "lengths", "plans", "scales",
-             "masses", "forces", "moments", "gravity", "balance", "gears", "synthesis"}
+             "masses", "forces", "moments", "gravity", "balance", "gears", "synthesis", "dynamics"}
 #: The keys of a scene that is a gear train alone (no [points], [links], [drive]).
 _TRAIN_KEYS = {"title", "description", "plans", "scales", "gears", "synthesis"}
 
@@ -88,13 +89,29 @@ def _parse(data: Mapping[str, Any], file: str | None) -> Scene:
     scales = read_scales(subtable(data, "scales"))
     masses = read_masses(subtable(data, "masses"), links)
     forces = read_forces(data.get("forces", []), links)
+    follows = next((f for f in forces if f.follows_output), None)
+    if follows is not None and cycle is None:
+        raise SceneError("a force with a law or a stroke follows the output link over the cycle: add [drive] "
+                         "positions = N (and [plans] output, the slider or rocker it follows)",
+                         key=f"forces[{follows.index}]")
     moments = read_moments(data.get("moments", []), links)
     gravity = read_gravity(data)
     balance = read_balance(data["balance"] if "balance" in data else None, drive, links, points)
+    dynamics = read_dynamics(data["dynamics"]) if "dynamics" in data else None
+    if "dynamics" in draw and dynamics is None:
+        raise SceneError('draw "dynamics" shows the machine\'s motion under its loads: add [dynamics] with delta '
+                         '(the allowed coefficient of speed fluctuation) or flywheel', key="plans.draw")
+    if dynamics is not None:
+        if cycle is None:
+            raise SceneError("[dynamics] finds the machine's motion over a steady cycle: add [drive] positions = N "
+                             "(e.g. 12)", key="dynamics")
+        if drive.speed == 0.0 or drive.rate != 0.0:
+            raise SceneError("[dynamics] starts from the crank turning at its mean speed: give omega ≠ 0 (the mean "
+                             "ω_m) and epsilon = 0", key="drive.omega" if drive.speed == 0.0 else "drive.epsilon")
     return Scene(title=title or "Mechanism", points=points, links=links, sliders=sliders, drive=drive,
                  lengths=lengths, draw=draw, senses=senses, scales=scales, description=description, file=file,
                  cycle=cycle, masses=masses, forces=forces, moments=moments, gravity=gravity, balance=balance,
-                 gears=gears)
+                 gears=gears, dynamics=dynamics)
 
 
 def _train_only(data: Mapping[str, Any], title: str, description: str, gears: GearTrain | None,

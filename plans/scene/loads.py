@@ -78,14 +78,41 @@ def _load_entries(items: Any, name: str, allowed: set[str], required: tuple[str,
         yield i, key, item
 
 
+#: The keys of a ``[[forces]]`` entry.
+FORCE_KEYS = {"link", "at", "vector", "magnitude", "angle", "law", "stroke", "oppose", "from"}
+#: Where a stroke-limited force acts (``stroke``).
+STROKES = ("both", "working", "return")
+#: Most (x, F) pairs of a law (an indicator diagram of a few hundred points is plenty).
+MAX_LAW_POINTS = 2000
+
+
 def read_forces(items: Any, links: Mapping[str, tuple[str, ...]]) -> tuple[AppliedForce, ...]:
-    """``[[forces]]``: vector = [Fx, Fy] (N), or magnitude (N) with angle (°), at a point of a link."""
+    """``[[forces]]``: vector = [Fx, Fy] (N), or magnitude (N) with angle (°), at a point of a
+    link; or a ``law`` of the output's travel (with angle, or vector giving the direction), with
+    ``stroke``, ``oppose`` and ``from`` (see :class:`~plans.scene.values.AppliedForce`)."""
     out = []
-    for i, key, item in _load_entries(items, "forces", {"link", "at", "vector", "magnitude", "angle"}, ("link", "at"),
-                                      "a force has link, at, and vector or magnitude with angle",
+    for i, key, item in _load_entries(items, "forces", FORCE_KEYS, ("link", "at"),
+                                      "a force has link, at, and vector or magnitude with angle (or a law); "
+                                      "stroke, oppose, from",
                                       "a force needs link, at, and vector = [Fx, Fy] (N)"):
         link = _moving_link(item["link"], f"{key}.link", links, "a force")
         at = _point_of(item["at"], f"{key}.at", link, links)
+        oppose = item.get("oppose", False)
+        if not isinstance(oppose, bool):
+            raise SceneError(f"oppose is true or false, got {SHOW.repr(oppose)}", key=f"{key}.oppose")
+        stroke = item.get("stroke", "both")
+        if stroke not in STROKES:
+            raise SceneError(f"stroke is \"working\" (only while the output moves away from its extreme \"from\"), "
+                             f"\"return\" or \"both\"; got {SHOW.repr(stroke)}", key=f"{key}.stroke")
+        origin = item.get("from", "min")
+        if origin not in ("min", "max"):
+            raise SceneError(f"from names the output's extreme where the working stroke starts and the law's travel "
+                             f"is 0: \"min\" (smallest displacement or angle) or \"max\"; got {SHOW.repr(origin)}",
+                             key=f"{key}.from")
+        law = _law(item["law"], f"{key}.law") if "law" in item else ()
+        if "from" in item and not law and stroke == "both":
+            raise SceneError("from places the law's travel and the working stroke; give a law or a stroke, or "
+                             "remove from", key=f"{key}.from")
         if "vector" in item:
             if "magnitude" in item or "angle" in item:
                 raise SceneError("give either vector = [Fx, Fy] or magnitude with angle, not both", key=key)
@@ -93,13 +120,62 @@ def read_forces(items: Any, links: Mapping[str, tuple[str, ...]]) -> tuple[Appli
             if not isinstance(vec, list) or len(vec) != 2:
                 raise SceneError(f"vector is [Fx, Fy] in newtons, got {SHOW.repr(vec)}", key=f"{key}.vector")
             fx, fy = (number(c, f"{key}.vector", bound=MAX_LOAD, why=" N") for c in vec)
+            vector: tuple[float, float] | None = (fx, fy)
+            if law:
+                size = math.hypot(fx, fy)
+                if size == 0.0 or not math.isfinite(size):
+                    raise SceneError("with a law, vector gives the force's direction only: a nonzero [Fx, Fy]",
+                                     key=f"{key}.vector")
+                vector = (fx / size, fy / size)
+        elif law:
+            if "magnitude" in item:
+                raise SceneError("a force with a law takes its magnitude from the law: remove magnitude", key=key)
+            if "angle" not in item and not oppose:
+                raise SceneError("a force with a law needs its direction: angle (°), or oppose = true (against the "
+                                 "velocity of its point)", key=key)
+            vector = None if "angle" not in item else _unit(item["angle"], f"{key}.angle")
         else:
-            if "magnitude" not in item or "angle" not in item:
+            if "magnitude" not in item or ("angle" not in item and not oppose):
                 raise SceneError("a force needs vector = [Fx, Fy] (N), or magnitude (N) with angle (°)", key=key)
             mag = number(item["magnitude"], f"{key}.magnitude", bound=MAX_LOAD, why=" N")
-            ang = math.radians(number(item["angle"], f"{key}.angle", bound=MAX_ANGLE_DEG, why="°"))
-            fx, fy = mag * math.cos(ang), mag * math.sin(ang)
-        out.append(AppliedForce(link=link, at=at, vector=(fx, fy), index=i))
+            if "angle" in item:
+                ux, uy = _unit(item["angle"], f"{key}.angle")
+                vector = (mag * ux, mag * uy)
+            else:
+                if mag < 0.0:
+                    raise SceneError(f"a force against the velocity of its point has a magnitude of 0 or more, got "
+                                     f"{mag:g} N", key=f"{key}.magnitude")
+                vector = None
+        out.append(AppliedForce(link=link, at=at, vector=vector, index=i, law=law, stroke=stroke, oppose=oppose,
+                                origin=origin, magnitude=None if vector is not None or law else mag))
+    return tuple(out)
+
+
+def _unit(value: Any, key: str) -> tuple[float, float]:
+    """The unit vector at the angle ``value`` (°, CCW from +x)."""
+    ang = math.radians(number(value, key, bound=MAX_ANGLE_DEG, why="°"))
+    return math.cos(ang), math.sin(ang)
+
+
+def _law(value: Any, key: str) -> tuple[tuple[float, float], ...]:
+    """A law: a list of at least two [x, F] pairs, x ≥ 0 strictly increasing."""
+    if not isinstance(value, list) or len(value) < 2 or len(value) > MAX_LAW_POINTS:
+        raise SceneError(f"law is a list of 2 to {MAX_LAW_POINTS} pairs [x, F] (x the output's travel from its "
+                         f"extreme, m or °; F in N), e.g. [[0.0, 0.0], [0.05, 4000.0]]; got {SHOW.repr(value)}",
+                         key=key)
+    out = []
+    for k, pair in enumerate(value):
+        if not isinstance(pair, list) or len(pair) != 2:
+            raise SceneError(f"each point of a law is a pair [x, F], got {SHOW.repr(pair)}", key=f"{key}[{k}]")
+        x = number(pair[0], f"{key}[{k}]", bound=MAX_LOAD, why=" (m or °)")
+        f = number(pair[1], f"{key}[{k}]", bound=MAX_LOAD, why=" N")
+        if x < 0.0:
+            raise SceneError(f"a law's travel x is measured from the output's extreme and is 0 or more, got {x:g}",
+                             key=f"{key}[{k}]")
+        if out and x <= out[-1][0]:
+            raise SceneError(f"a law is not monotone in its travel: x = {x:g} after x = {out[-1][0]:g}; list the "
+                             "pairs with x strictly increasing", key=f"{key}[{k}]")
+        out.append((x, f))
     return tuple(out)
 
 

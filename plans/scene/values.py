@@ -13,17 +13,18 @@ from dataclasses import dataclass, field
 from enum import StrEnum
 from typing import Mapping
 
+from .dynamics import Dynamics
 from .gears import GearTrain, Synthesis
 
 #: The frame's name in [links] (a link name, a string).
 FRAME = "0"
 #: The sheets a scene may draw (``[plans] draw``), in the order they are drawn.
 DRAWABLE = ("scheme", "velocity", "acceleration", "centres", "positions", "diagrams", "velocities", "forces", "lever",
-            "gears")
+            "gears", "dynamics")
 #: What needs the force analysis (kinetostatics): the force plans and Zhukovsky's lever.
 FORCE_SHEETS = ("forces", "lever")
 #: Sheets of the whole cycle: they need ``[drive] positions = N``.
-CYCLE_SHEETS = ("positions", "diagrams", "velocities")
+CYCLE_SHEETS = ("positions", "diagrams", "velocities", "dynamics")
 #: Fewest and most positions of a cycle (``[drive] positions``): three chords at least for the
 #: graphical differentiation; one a degree at most (as MAX_POSITIONS).
 MIN_CYCLE_POSITIONS = 3
@@ -194,12 +195,36 @@ class Mass:
 @dataclass(frozen=True)
 class AppliedForce:
     """An external force (``[[forces]]``) on ``link`` at its point ``at``: ``vector`` (N) in
-    the fixed x, y frame, the same at every position. ``index`` is its place in the list."""
+    the fixed x, y frame. ``index`` is its place in the list.
+
+    A constant force has ``vector`` alone. One that follows the cycle has ``law``: (x, F)
+    pairs, x strictly increasing — x the output link's travel from its extreme ``origin``
+    (``"min"``: where its displacement or angle is smallest, ``"max"``) in m for a slider or
+    degrees for a rocker, F in N, interpolated linearly, the end values held beyond the ends —
+    and then ``vector`` is the unit direction. ``stroke``: ``"working"`` (acts only while the
+    output moves away from ``origin``), ``"return"`` (only while it moves back) or ``"both"``.
+    ``oppose``: its sense always against the velocity of its point ``at`` (``vector`` None:
+    along that velocity, against it, of ``magnitude`` N or its law's value)."""
 
     link: str
     at: str
-    vector: tuple[float, float]
+    vector: tuple[float, float] | None
     index: int
+    law: tuple[tuple[float, float], ...] = ()
+    stroke: str = "both"
+    oppose: bool = False
+    origin: str = "min"
+    magnitude: float | None = None      # N, of a force against its point's velocity given no direction
+
+    @property
+    def follows_output(self) -> bool:
+        """Whether the force reads the output link's travel (a law or a stroke)."""
+        return bool(self.law) or self.stroke != "both"
+
+    @property
+    def constant(self) -> bool:
+        """Whether the force is the same vector at every position."""
+        return not self.follows_output and not self.oppose
 
 
 @dataclass(frozen=True)
@@ -249,6 +274,7 @@ class Scene:
     balance: Balance | None = None  # the balancing element when forces are computed
     gears: GearTrain | None = None  # [gears]: a train alone (no points, links, drive=None) or driving the crank
     synthesis: Synthesis | None = None  # [synthesis]: a planetary train to find (then gears is None)
+    dynamics: Dynamics | None = None    # [dynamics]: the machine's motion under its loads (needs the cycle)
 
     @property
     def train_only(self) -> bool:
