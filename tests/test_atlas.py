@@ -89,6 +89,9 @@ ATLAS = {
     "triad_sliding_rod": Entry(III),
     "watt_six_bar": Entry(II_II),
     "whitworth": Entry(II_II),
+    "six_link_press_flywheel": Entry(II_II),
+    "shaper_flywheel": Entry(II_II),
+    "compressor_flywheel": Entry(II),
 }
 
 
@@ -98,6 +101,16 @@ def load(stem: str) -> dict:
     data = tomllib.loads((EXAMPLES_DIR / f"{stem}.toml").read_text(encoding="utf-8"))
     for key in ("positions", "start"):
         data["drive"].pop(key, None)
+    if "displacement" not in data["drive"]:
+        data["drive"].setdefault("angle", 0.0)      # start = "extreme" gave the cycle's first angle
+    # what belongs to the cycle goes with it: [dynamics], and the forces that follow the output
+    data.pop("dynamics", None)
+    data["forces"] = [f for f in data.get("forces", []) if not {"law", "stroke"} & set(f)]
+    for key in ("output", "at", "trace"):
+        data.get("plans", {}).pop(key, None)
+    draw = data.get("plans", {}).get("draw")
+    if draw:
+        data["plans"]["draw"] = [d for d in draw if d not in ("positions", "diagrams", "velocities", "dynamics")]
     return data
 
 

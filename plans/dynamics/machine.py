@@ -169,7 +169,7 @@ def machine_dynamics(scene: Scene, cycle: Cycle) -> MachineDynamics:
     inertia = fit(edges, red.inertia + dyn.rotor_inertia)
     slope = fit(edges, sense * red.slope)
     work = moment.integral(0.0)
-    constant = -work.total() / (2 * np.pi)
+    constant = -moment.total() / (2 * np.pi)
     half = 0.5 * np.diff(edges)
     line = Piecewise(edges, np.column_stack([constant * (edges[:-1] + half), constant * half]))
     energy = combine((1.0, work), (1.0, line))
