@@ -5,11 +5,9 @@ a direct integration of the energy equation, published turning-moment problems).
 
 from __future__ import annotations
 
-import json
 import math
 import subprocess
 import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -250,15 +248,10 @@ def test_dynamics_report_is_deterministic():
 def test_law_force_follows_the_ram_on_its_working_stroke_only():
     scene = read_scene(EXAMPLES / "six_link_press_flywheel.toml")
     data = render(scene).report
-    ys = [p["points"]["E"]["r"][1] for p in data["positions"]]
     top = max(e["s"] for e in data["cycle"]["extremes"])
     f = scene.forces[0]
-    # the scene's guide points +y from its anchor: s is y plus a constant; the travel from the top:
-    s0 = data["cycle"]["extremes"][1]["s"] - max(ys) if False else None
-    for i, p in enumerate(data["positions"]):
-        vy = p["points"]["E"]["v"][1]
-        x = max(ys) - p["points"]["E"]["r"][1] if False else None
-        moving_down = vy < -1e-9
+    for p in data["positions"]:
+        moving_down = p["points"]["E"]["v"][1] < -1e-9
         slider = p["sliders"]
         key = next(iter(slider))
         travel = top - slider[key]["s"]
@@ -297,13 +290,6 @@ def test_opposing_force_on_a_slider_marghitu():
 
 
 # --- bad input ------------------------------------------------------------------------------------
-
-def _scene_text(**changes) -> str:
-    text = (EXAMPLES / "six_link_press_flywheel.toml").read_text()
-    for old, new in changes.items():
-        text = text.replace(old.replace("_", " "), new) if False else text.replace(*new)
-    return text
-
 
 @pytest.mark.parametrize("old, new, words", [
     ("[0.03, 1000.0], [0.04, 4000.0]", "[0.04, 1000.0], [0.03, 4000.0]", "not monotone"),

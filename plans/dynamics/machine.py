@@ -29,7 +29,7 @@ from ..kinematics import analyse
 from ..kinematics.cycle import Cycle, output_motion
 from ..kinetostatics import Travel
 from ..scene import Scene
-from .piecewise import NODES, Piecewise, combine, fit, nodes_of
+from .piecewise import Piecewise, combine, fit, nodes_of
 from .reduced import Reduced, reduce
 
 __all__ = ["MachineDynamics", "Flywheel", "machine_dynamics", "flywheel_for", "PANEL_DEG", "BREAK_TOL"]
