@@ -142,6 +142,13 @@ def machine_dynamics(scene: Scene, cycle: Cycle) -> MachineDynamics:
     def phi_of(theta: np.ndarray) -> np.ndarray:
         return start + sense * np.degrees(theta)
 
+    scale = 1.0      # the output's largest speed, as the force analysis takes it (its positions' |v|)
+    if follows:
+        v = cycle.output.v if cycle.output.v is not None else \
+            output_motion(analyse(mech, structure, phi_of(np.linspace(0, 2 * np.pi, 361)), order=1),
+                          cycle.output.link).v
+        scale = float(np.max(np.abs(v)))
+
     def solve(theta: np.ndarray, order: int):
         motion = analyse(mech, structure, phi_of(np.asarray(theta, float)), order=order)
         travel = None
@@ -151,13 +158,6 @@ def machine_dynamics(scene: Scene, cycle: Cycle) -> MachineDynamics:
             travel = Travel(out.link, out.kind, out.s, v, low, high, scale)
         return motion, travel
 
-    scale = 1.0
-    if follows:
-        grid_out = output_motion(cycle.dense, cycle.output.link) if cycle.dense.order >= 1 else None
-        probe = grid_out.v if grid_out is not None else \
-            output_motion(analyse(mech, structure, phi_of(np.linspace(0, 2 * np.pi, 361)), order=1),
-                          cycle.output.link).v
-        scale = float(np.max(np.abs(probe)))
     breaks = _breaks(scene, cycle, solve, sense, start)
     uniform = np.linspace(0.0, 2 * np.pi, int(round(360.0 / PANEL_DEG)) + 1)
     edges = np.unique(np.concatenate([uniform, breaks]))
@@ -266,21 +266,15 @@ def _breaks(scene: Scene, cycle: Cycle, solve, sense: float, start: float) -> np
         out += [float(np.mod(sense * np.radians(a - start), 2 * np.pi)) for a in cycle.extremes.values]
     grid = np.linspace(0.0, 2 * np.pi, BRACKETS + 1)
     motion, travel = solve(grid, 1)
-    probes = []       # (function of (motion, travel) at θ → values, its values on the grid)
+    probes = []       # functions of (motion, travel) whose sign changes are kinks
     for f in forces:
         if f.law:
             for x_k, _ in f.law:
                 probes.append(lambda m, t, f=f, x_k=x_k: t.x(f.origin) - x_k)
         if f.oppose:
-            d0 = None if f.vector is None else np.array(f.vector, float)
-
-            def along(m, t, f=f, d0=d0, ref=None):
-                v = m.velocity(f.at, f.link)
-                d = d0 if d0 is not None else ref
-                return v @ d if d.ndim == 1 else np.sum(v * d, axis=1)
-            if d0 is not None:
-                probes.append(along)
-            else:
+            if f.vector is not None:        # its point's velocity along the force's line
+                probes.append(lambda m, t, f=f, d=np.array(f.vector, float): m.velocity(f.at, f.link) @ d)
+            else:                           # along the velocity itself: where it reverses
                 v = motion.velocity(f.at, f.link)
                 flip = np.flatnonzero(np.sum(v[:-1] * v[1:], axis=1) < 0.0)
                 for j in flip:
