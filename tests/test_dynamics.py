@@ -6,6 +6,7 @@ a direct integration of the energy equation, published turning-moment problems).
 from __future__ import annotations
 
 import math
+import re
 import subprocess
 import sys
 
@@ -17,6 +18,7 @@ from conftest import EXAMPLES as _ALL
 
 EXAMPLES = _ALL[0].parent
 from plans import render
+from plans.checking import check_svg
 from plans.dynamics import flywheel_for, machine_dynamics
 from plans.dynamics.piecewise import Piecewise
 from plans.kinematics import analyse
@@ -317,3 +319,83 @@ def test_bad_dynamics_input_is_one_line_and_exit_2(tmp_path, old, new, words):
     lines = r.stderr.strip().splitlines()
     assert len(lines) == 1 and words in lines[0], r.stderr
     assert not out.exists()
+
+
+# --- the dynamics sheet ---------------------------------------------------------------------------------
+
+def _sheet(name: str, tmp_path):
+    out = render(EXAMPLES / f"{name}.toml")
+    path = tmp_path / f"{name}-dynamics.svg"
+    path.write_text(out.files[f"{name}-dynamics.svg"], encoding="utf-8")
+    return out.report, path
+
+
+@pytest.mark.parametrize("name", DYNAMICS_EXAMPLES)
+def test_dynamics_sheet_passes_plans_check_and_draws_the_reported_values(name, tmp_path):
+    """Every tagged ordinate (M_r, A, ΔT, I_r at the positions) and the segment kl measures
+    within drawing precision, and the ordinates are the report's exact values."""
+    data, path = _sheet(name, tmp_path)
+    dyn = data["cycle"]["dynamics"]
+    found = check_svg(path)
+    assert found and all(m.ok for m in found), [m for m in found if not m.ok][:3]
+    by = {m.quantity: m for m in found}
+    n = len(dyn["reduced_moment"])
+    work = dyn["work_resisting"] if dyn["sheet"]["works"][0] == "A_r" else dyn["work_driving"]
+    for k in range(n):
+        assert by[f"M@{k}"].value == pytest.approx(abs(dyn["reduced_moment"][k] * _sense(data)), rel=1e-12, abs=1e-9)
+        assert by[f"I@{k}"].value == pytest.approx(dyn["reduced_inertia"][k] + dyn["rotor_inertia"], rel=1e-12)
+        assert by[f"T@{k}"].value == pytest.approx(abs(dyn["kinetic_energy_change"][k]), rel=1e-9, abs=1e-9)
+        assert by[f"A@{k}"].value == pytest.approx(abs(work[k]), rel=1e-9, abs=1e-9)
+    assert f"M@{n}" in by and "kl" in by
+
+
+def _sense(data) -> float:
+    return 1.0 if data["positions"][0]["links"]["1"]["omega"] > 0 else -1.0
+
+
+@pytest.mark.parametrize("name", DYNAMICS_EXAMPLES)
+def test_wittenbauer_figure_within_the_error_the_sheet_states(name, tmp_path):
+    """J read off the drawing (kl measured in the SVG, J = kl·μT/(ω_m²δ) − I0) is within the
+    difference the sheet states between Wittenbauer's J and the exact one, plus what the drawn
+    coordinates' rounding allows."""
+    data, path = _sheet(name, tmp_path)
+    dyn = data["cycle"]["dynamics"]
+    w = dyn["sheet"]["wittenbauer"]
+    kl = next(m for m in check_svg(path) if m.quantity == "kl")
+    energy = w["mu_t"] * (dyn["omega_mean"] ** 2 * dyn["flywheel"]["delta"])
+    j_drawn = kl.length_mm * w["mu_t"] / (dyn["omega_mean"] ** 2 * dyn["flywheel"]["delta"]) - w["i0"]
+    exact = dyn["flywheel"]["inertia_exact"]
+    stated = dyn["flywheel"]["difference"]
+    text = path.read_text(encoding="utf-8")
+    assert f"differs by {100 * stated:.2g} %" in text
+    assert abs(j_drawn - exact) <= stated * exact + kl.tolerance / kl.mu * w["mu_t"] / energy * w["mu_t"] + 1e-12
+    assert abs(j_drawn - exact) <= 1e-3 * exact          # and the drawing is good to the thousandth
+    # the tangents' angles: tan ψ = (μI/μT)·ω_m²(1 ± δ)/2
+    d = dyn["flywheel"]["delta"]
+    for which, sign in (("max", 1), ("min", -1)):
+        tan = w["mu_i"] / w["mu_t"] * dyn["omega_mean"] ** 2 * (1 + sign * d) / 2
+        assert w["psi"][which] == pytest.approx(math.degrees(math.atan(tan)), rel=1e-12)
+
+
+@pytest.mark.parametrize("name", DYNAMICS_EXAMPLES)
+def test_graphical_work_is_the_sum_of_middle_ordinates(name, tmp_path):
+    """The dashed work on the sheet at position k is ∓Σ M_r(middle of interval j)·Δφ over j < k:
+    the middles' M_r read from a second render of the scene with twice the positions (its odd
+    positions), so the chords are checked against values this sheet did not compute."""
+    out = render(EXAMPLES / f"{name}.toml")
+    n = len(out.report["cycle"]["dynamics"]["reduced_moment"])
+    text = (EXAMPLES / f"{name}.toml").read_text(encoding="utf-8")
+    assert f"positions = {n}" in text
+    path = tmp_path / f"{name}_twice.toml"
+    path.write_text(text.replace(f"positions = {n}", f"positions = {2 * n}"), encoding="utf-8")
+    twice = render(path).report["cycle"]["dynamics"]
+    middles = np.array(twice["reduced_moment"][1::2]) * _sense(out.report)
+    sheet = out.files[f"{name}-dynamics.svg"]
+    group = sheet[sheet.index('id="dynamics-A-gdots"'):]
+    group = group[:group.index("</g>")]
+    drawn = np.array([float(v) for v in re.findall(r'data-value="([^"]+)"', group)])
+    chords = np.concatenate([[0.0], np.cumsum(middles * 2 * np.pi / n)])
+    loads_resist = out.report["cycle"]["dynamics"]["sheet"]["works"][0] == "A_r"
+    expect = -chords if loads_resist else chords
+    assert len(drawn) == n + 1
+    assert np.max(np.abs(drawn - expect)) <= 1e-9 * np.max(np.abs(expect))

@@ -22,7 +22,7 @@ import numpy as np
 
 from .scales import fitting_scale
 
-__all__ = ["Graph", "Diagrams", "diagrams", "WIDTH_MM", "GRAPH_MM", "GAP_MM"]
+__all__ = ["Graph", "Diagrams", "diagrams", "make_graph", "ticks_for", "nice_step", "WIDTH_MM", "GRAPH_MM", "GAP_MM"]
 
 #: Largest length of the time axis (one period), mm: the width of an A3 sheet's drawing area
 #: less room for the value numbers and the axis names.
@@ -40,7 +40,8 @@ class Graph:
     (mm from the origin, low ≤ 0 ≤ high); ``exact`` the dense curve (mm); ``at_positions``
     (x mm, y mm, exact value) at the N + 1 positions; ``graphical`` (x mm, y mm, value) the
     chord method's values (none for s); ``ticks`` (value, y mm); ``error`` the largest
-    |graphical − exact| at the same instants over the largest |exact| (0 for s)."""
+    |graphical − exact| at the same instants over the largest |exact| (0 for s); ``extra`` a
+    second exact curve (mm) on the same graph, named ``extra_symbol``."""
 
     quantity: str
     symbol: str
@@ -54,6 +55,8 @@ class Graph:
     graphical: tuple[tuple[float, float, float], ...]
     ticks: tuple[tuple[float, float], ...]
     error: float
+    extra: tuple[tuple[float, float], ...] = ()
+    extra_symbol: str = ""
 
 
 @dataclass(frozen=True)
@@ -78,19 +81,49 @@ class Diagrams:
     time_ticks: tuple[tuple[float, float], ...]
 
 
-def _nice_step(span: float, count: int = 5) -> float:
+def nice_step(span: float, count: int = 5) -> float:
     """A tick step from the series 1, 2, 2.5, 5 × 10^k giving about ``count`` ticks over ``span``."""
     raw = span / count
     k = math.floor(math.log10(raw))
     return min((m * 10.0 ** k for m in (1.0, 2.0, 2.5, 5.0, 10.0)), key=lambda s: abs(math.log(s / raw)))
 
 
-def _ticks(low: float, high: float, count: int = 5) -> list[float]:
+def ticks_for(low: float, high: float, count: int = 5) -> list[float]:
     """Values of the ticks from ``low`` to ``high`` (0 always among them), about ``count``."""
-    step = _nice_step(high - low, count)
+    step = nice_step(high - low, count)
     first = math.ceil(low / step - 1e-9)
     last = math.floor(high / step + 1e-9)
     return [round(k * step, 12) + 0.0 for k in range(first, last + 1)]
+
+
+def make_graph(quantity: str, symbol: str, unit: str, *, top: float, x: np.ndarray, values: np.ndarray,
+               at: slice | np.ndarray, graphical: tuple[slice | np.ndarray, np.ndarray] | None = None,
+               extra: np.ndarray | None = None, extra_symbol: str = "", height: float = GRAPH_MM,
+               mu: float | None = None) -> Graph:
+    """One graph whose top is at ``top`` (mm): the exact ``values`` at abscissae ``x`` (mm), dots
+    at the samples ``at``, the ``graphical`` values (at which samples, values) beside them, an
+    ``extra`` exact curve on the same samples; ``mu`` the smallest series scale that keeps the
+    range (0 always in it) within ``height`` unless given."""
+    lo = min(0.0, float(np.min(values)), float(np.min(graphical[1])) if graphical is not None else 0.0,
+             float(np.min(extra)) if extra is not None else 0.0)
+    hi = max(0.0, float(np.max(values)), float(np.max(graphical[1])) if graphical is not None else 0.0,
+             float(np.max(extra)) if extra is not None else 0.0)
+    if mu is None:
+        mu = fitting_scale(max(hi - lo, 1e-300), height)
+    origin = (0.0, top - hi / mu)
+    y = origin[1] + values / mu
+    exact = tuple((float(px), float(py)) for px, py in zip(x, y))
+    xa, va = x[at], values[at]
+    at_pos = tuple((float(px), float(origin[1] + pv / mu), float(pv)) for px, pv in zip(xa, va))
+    drawn, error = (), 0.0
+    if graphical is not None:
+        where, gv = graphical
+        drawn = tuple((float(px), float(origin[1] + g / mu), float(g)) for px, g in zip(x[where], gv))
+        error = float(np.max(np.abs(gv - values[where])) / np.max(np.abs(values)))
+    more = () if extra is None else tuple((float(px), float(origin[1] + e / mu)) for px, e in zip(x, extra))
+    ticks = tuple((tv, float(origin[1] + tv / mu)) for tv in ticks_for(lo, hi))
+    return Graph(quantity, symbol, unit, mu, origin, lo / mu, hi / mu, exact, at_pos, drawn, ticks, error, more,
+                 extra_symbol)
 
 
 def diagrams(*, start: float, step: float, positions: int, every: int, omega: float, link: str, point: str,
@@ -120,24 +153,11 @@ def diagrams(*, start: float, step: float, positions: int, every: int, omega: fl
     top = 0.0
     for (quantity, values, graphical_at, graphical), (sym, unit) in zip(
             (("s", s, None, None), ("v", v, mid, v_chord), ("a", a, pos, a_chord)), names):
-        lo = min(0.0, float(np.min(values)), float(np.min(graphical)) if graphical is not None else 0.0)
-        hi = max(0.0, float(np.max(values)), float(np.max(graphical)) if graphical is not None else 0.0)
-        mu = fitting_scale(max(hi - lo, 1e-300), GRAPH_MM)
-        origin = (0.0, top - hi / mu)
-        y = origin[1] + values / mu
-        exact = tuple((float(px), float(py)) for px, py in zip(x, y))
-        at_pos = tuple((float(x[k]), float(origin[1] + values[k] / mu), float(values[k]))
-                       for k in range(0, n_dense, 2 * every))
-        drawn, error = (), 0.0
-        if graphical is not None:
-            xs = x[graphical_at]
-            drawn = tuple((float(px), float(origin[1] + g / mu), float(g)) for px, g in zip(xs, graphical))
-            error = float(np.max(np.abs(graphical - values[graphical_at])) / np.max(np.abs(values)))
-        ticks = tuple((tv, float(origin[1] + tv / mu)) for tv in _ticks(lo, hi))
-        graphs.append(Graph(quantity, f"{sym}_{{{sub}}}", unit, mu, origin, lo / mu, hi / mu, exact, at_pos, drawn,
-                            ticks, error))
-        top = origin[1] + lo / mu - GAP_MM
-    time_ticks = tuple((tv, tv / mu_t) for tv in _ticks(0.0, period, 8) if tv / mu_t <= length + 1e-9)
+        g = make_graph(quantity, f"{sym}_{{{sub}}}", unit, top=top, x=x, values=values, at=pos,
+                       graphical=None if graphical is None else (graphical_at, graphical))
+        graphs.append(g)
+        top = g.origin[1] + g.low - GAP_MM
+    time_ticks = tuple((tv, tv / mu_t) for tv in ticks_for(0.0, period, 8) if tv / mu_t <= length + 1e-9)
     return Diagrams(mu_t=mu_t, mu_phi=abs(omega) * mu_t, length=length, period=period, omega=omega, start=start,
                     step=step, positions=positions, link=link, point=point, kind=kind, graphs=tuple(graphs),
                     time_ticks=time_ticks)

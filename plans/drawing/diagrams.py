@@ -20,7 +20,7 @@ from .style import Style
 from .svg import Heading, _tag
 from .positions import width_of
 
-__all__ = ["draw_diagrams", "LEFT_MM", "RIGHT_MM"]
+__all__ = ["draw_diagrams", "draw_graph", "LEFT_MM", "RIGHT_MM"]
 
 #: Room left of the value axes (numbers, names) and right of the time axes, mm.
 LEFT_MM = 24.0
@@ -47,7 +47,7 @@ def draw_diagrams(d: Diagrams, heading: Heading, *, ident: str, style: Style = S
     dwg, canvas = new_sheet(FORMATS[2], box, ident=ident, style=style,
                             block=TitleBlock(heading.mechanism, heading.sheet, heading.position, scales))
     for k, g in enumerate(d.graphs):
-        _graph(dwg, canvas, d, g, f"{ident}-{g.quantity}", style, numbered=True)
+        draw_graph(dwg, canvas, g, f"{ident}-{g.quantity}", style, mu_x=d.mu_t, length=d.length)
     _time_axis(dwg, canvas, d, last, ident, style)
     if notes:
         note_lines(canvas, dwg.add(dwg.g(id=f"{ident}-notes")), notes, style)
@@ -55,12 +55,17 @@ def draw_diagrams(d: Diagrams, heading: Heading, *, ident: str, style: Style = S
     return dwg.tostring()
 
 
-def _graph(dwg, canvas: Canvas, d: Diagrams, g: Graph, ident: str, style: Style, numbered: bool) -> None:
+def draw_graph(dwg, canvas: Canvas, g: Graph, ident: str, style: Style, *, mu_x: float, length: float,
+               abscissa: str = "t", numbered: bool = True) -> None:
+    """One graph (see the module) against ``abscissa`` ("t" in s, or "φ" in rad) at ``mu_x`` per
+    mm over ``length`` mm; its group says ``data-mu-t`` (or ``data-mu-phi``) and each dot
+    ``data-t`` (``data-phi``)."""
+    attr = "t" if abscissa == "t" else "phi"
     ox, oy = g.origin
     grp = dwg.g(id=ident, stroke=style.colour, fill="none", stroke_linecap="round")
     grp.attribs["data-diagram"] = g.quantity
     grp.attribs["data-scale"] = repr(g.mu)
-    grp.attribs["data-mu-t"] = repr(d.mu_t)
+    grp.attribs[f"data-mu-{attr}"] = repr(mu_x)
     px, py = canvas.paper(g.origin)
     grp.attribs["data-origin"] = f"{fmt(px, style.decimals)},{fmt(py, style.decimals)}"
     grp.attribs["data-error"] = repr(g.error)
@@ -81,7 +86,7 @@ def _graph(dwg, canvas: Canvas, d: Diagrams, g: Graph, ident: str, style: Style,
     y_top, y_bot = oy + g.high + 6.0, oy + g.low
     axis = canvas.line(grp, (ox, y_bot), (ox, y_top), width=style.vector, stroke_width=vec, id=f"{ident}-yaxis")
     arrow(canvas, grp, (ox, y_bot), (ox, y_top), style.colour, f"{ident}-yhead", style, of=f"{ident}-yaxis")
-    x_end = d.length + 7.0
+    x_end = length + 7.0
     canvas.line(grp, (ox, oy), (x_end, oy), width=style.vector, stroke_width=vec, id=f"{ident}-taxis")
     arrow(canvas, grp, (ox, oy), (x_end, oy), style.colour, f"{ident}-thead", style, of=f"{ident}-taxis")
     del axis
@@ -93,7 +98,7 @@ def _graph(dwg, canvas: Canvas, d: Diagrams, g: Graph, ident: str, style: Style,
     name = f"{g.symbol}, {g.unit}"
     canvas.text(texts, canvas.paper((ox - 2.0 - width_of(name, style.text), y_top + 1.5)), name, size=style.text,
                 ident=f"{ident}-name")
-    canvas.text(texts, canvas.paper((x_end + 1.5, oy - 1.2)), "t", size=style.text, italic=True,
+    canvas.text(texts, canvas.paper((x_end + 1.5, oy - 1.2)), abscissa, size=style.text, italic=True,
                 ident=f"{ident}-tname")
     # the position numbers below the graph
     if numbered:
@@ -107,13 +112,17 @@ def _graph(dwg, canvas: Canvas, d: Diagrams, g: Graph, ident: str, style: Style,
                             stroke=style.vector_colour)
     curve.attribs["data-kind"] = "exact"
     grp.add(_dots(dwg, canvas, g.at_positions, "exact", style.vector_colour, 0.55, f"{ident}-dots", f"{ident}-e",
-                  d.mu_t))
+                  mu_x, attr))
+    if g.extra:
+        more = canvas.polyline(grp, g.extra, width=style.vector, stroke_width=vec, id=f"{ident}-extra",
+                               stroke=style.colour)
+        more.attribs["data-kind"] = "exact"
     if g.graphical:
         chords = canvas.polyline(grp, [(x, y) for x, y, _ in g.graphical], width=style.thin, stroke_width=thin,
                                  stroke=style.component_colour, stroke_dasharray="2 1", id=f"{ident}-graphical")
         chords.attribs["data-kind"] = "graphical"
         grp.add(_dots(dwg, canvas, g.graphical, "graphical", style.component_colour, 0.5, f"{ident}-gdots",
-                      f"{ident}-g", d.mu_t))
+                      f"{ident}-g", mu_x, attr))
     grp.add(texts)
     dwg.add(grp)
 
@@ -136,13 +145,15 @@ def _time_axis(dwg, canvas: Canvas, d: Diagrams, last: Graph, ident: str, style:
     dwg.add(texts)
 
 
-def _dots(dwg, canvas: Canvas, points, kind: str, colour: str, radius: float, group: str, prefix: str, mu_t: float):
+def _dots(dwg, canvas: Canvas, points, kind: str, colour: str, radius: float, group: str, prefix: str, mu_x: float,
+          attr: str = "t"):
     """A group of dots at ``points`` ((x, y, value) in mm and the value's unit), each tagged with
-    its ``kind``, value and time t = x·μt (s), so that a test can read the curve back."""
+    its ``kind``, value and abscissa (``data-t`` = x·μt in s, or ``data-phi`` in rad), so that a
+    test can read the curve back."""
     g = dwg.g(id=group, fill=colour, stroke="none")
     for k, (x, y, value) in enumerate(points):
         el = canvas.circle(g, (x, y), radius, filled=True, id=f"{prefix}{k}")
         el.attribs["data-kind"] = kind
         el.attribs["data-value"] = repr(value)
-        el.attribs["data-t"] = repr(x * mu_t)
+        el.attribs[f"data-{attr}"] = repr(x * mu_x)
     return g

@@ -1,0 +1,188 @@
+"""The dynamics sheet's geometry (paper mm, y up): four graphs against the crank's turned angle
+φ (from position 0, in its sense of rotation) and Wittenbauer's energy–mass diagram.
+
+- M_r(φ): the reduced moment of the loads, positive where it drives the crank.
+- A_r(φ) and A_d(φ): the work of what resists and of what drives (J). The loads' work is
+  integrated graphically by chords, as on paper: over each interval between positions the
+  curve M_r is replaced by its ordinate at the interval's middle, and the chord of the work
+  curve rises by that ordinate times Δφ (the ray from a pole at distance H mm, so that
+  μA = μM·μφ·H); the constant moment's work is the straight line from the origin to the end of
+  the loads' work. Exact curves (solid) beside the chords (dashed).
+- ΔT(φ) = A_d − A_r (J), exactly and as the difference of the graphical works.
+- I_r(φ): the reduced moment of inertia with the rotor's (kg·m²).
+- Wittenbauer: ΔT against I_r; the tangents at ψ_max, ψ_min with tan ψ = ω_m²(1 ± δ)/2 (in the
+  drawing's scales: × μI/μT) cut the segment kl on the ΔT axis (at I = I0, the axis's first
+  value), kl·μT = ω_m²·δ·(J + I0), so J = kl·μT/(ω_m²·δ) − I0.
+
+Every graph's ordinates at the positions are measured segments (length × μ = value); so is kl.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..dynamics import MachineDynamics
+from .diagrams import Graph, make_graph, nice_step, ticks_for
+from .scales import SERIES, fitting_scale
+
+__all__ = ["DynamicsDiagrams", "Wittenbauer", "Tangent", "dynamics_diagrams", "PHI_MM", "GRAPH_MM", "GAP_MM",
+           "WITTENBAUER_MM"]
+
+#: Largest length of the φ axis (one revolution), mm.
+PHI_MM = 190.0
+#: Largest height of one graph, and the space between two, mm.
+GRAPH_MM = 40.0
+GAP_MM = 15.0
+#: Largest width and height of Wittenbauer's diagram, mm.
+WITTENBAUER_MM = (120.0, 195.0)
+#: Samples of the exact curves per revolution (besides the positions and each side of every kink).
+SAMPLES = 720
+
+
+@dataclass(frozen=True)
+class Tangent:
+    """One of Wittenbauer's tangents: ``which`` "max" or "min", ``psi`` its angle on the paper
+    (degrees), ``slope`` ω_m²(1 ± δ)/2 (J/(kg·m²)), ``touch`` (x, y) mm where it touches the
+    curve, ``start`` (x, y) mm on the ΔT axis, ``end`` (x, y) mm past the touch point, and
+    ``value`` its ΔT on the axis (J)."""
+
+    which: str
+    psi: float
+    slope: float
+    touch: tuple[float, float]
+    start: tuple[float, float]
+    end: tuple[float, float]
+    value: float
+
+
+@dataclass(frozen=True)
+class Wittenbauer:
+    """The energy–mass diagram: ``mu_i`` (kg·m²/mm), ``mu_t`` (J/mm), ``i0`` the I axis's first
+    value (kg·m², at x = 0); the ``curve`` (mm), the ``at_positions`` (x, y mm, I, ΔT); the
+    axes' ``i_ticks`` (I, x mm) and ``t_ticks`` (ΔT, y mm); ``width``, ``low``, ``high`` (mm);
+    the two ``tangents`` (none for a given flywheel), ``segment`` kl (J: kl·μT) and ``inertia``
+    J by the diagram (kg·m²)."""
+
+    mu_i: float
+    mu_t: float
+    i0: float
+    curve: tuple[tuple[float, float], ...]
+    at_positions: tuple[tuple[float, float, float, float], ...]
+    i_ticks: tuple[tuple[float, float], ...]
+    t_ticks: tuple[tuple[float, float], ...]
+    width: float
+    low: float
+    high: float
+    tangents: tuple[Tangent, ...]
+    segment: float | None
+    inertia: float | None
+
+
+@dataclass(frozen=True)
+class DynamicsDiagrams:
+    """The sheet's graphs: ``mu_phi`` (rad/mm), ``length`` (mm, one revolution), ``positions``
+    N, ``pole`` H (mm) of the graphical integration, ``loads_drive`` (True when the loads' work
+    is A_d, as in an engine), the four ``graphs`` (M, A, T, I), ``works`` the names of the A
+    graph's two curves (the loads' work, integrated by chords, and the constant moment's line)
+    and ``wittenbauer``."""
+
+    mu_phi: float
+    length: float
+    positions: int
+    pole: float
+    loads_drive: bool
+    graphs: tuple[Graph, ...]
+    works: tuple[str, str]
+    wittenbauer: Wittenbauer
+
+
+def _series_at_least(value: float) -> float:
+    """The smallest number of the scale series (:data:`SERIES` × 10^k) not below ``value``."""
+    k = math.floor(math.log10(value))
+    return min(m * 10.0 ** j for j in (k, k + 1) for m in SERIES if m * 10.0 ** j >= value * (1 - 1e-12))
+
+
+def dynamics_diagrams(machine: MachineDynamics) -> DynamicsDiagrams:
+    """The sheet's geometry for a solved steady cycle (see the module)."""
+    n = len(machine.theta)
+    two_pi = 2.0 * math.pi
+    mu_phi = fitting_scale(two_pi, PHI_MM)
+    length = two_pi / mu_phi
+    pos = np.append(machine.theta, two_pi)
+    mids = 0.5 * (pos[:-1] + pos[1:])
+    eps = 1e-9
+    kinks = np.concatenate([machine.breaks - eps, machine.breaks + eps]) if len(machine.breaks) else np.array([])
+    theta = np.unique(np.concatenate([np.linspace(0.0, two_pi, SAMPLES + 1), pos, np.clip(kinks, 0.0, two_pi)]))
+    at = np.searchsorted(theta, pos)
+    x = theta / mu_phi
+    moment, inertia, energy = machine.moment(theta), machine.inertia(theta), machine.energy(theta)
+    loads = machine.work(theta)                       # ∫M_r dφ
+    line = machine.constant * theta                   # the constant moment's work
+    # graphical integration by chords: the middle ordinate of each interval times Δφ
+    steps = machine.moment(mids) * np.diff(pos)
+    loads_g = np.concatenate([[0.0], np.cumsum(steps)])
+    line_g = -loads_g[-1] * pos / two_pi            # the straight line to the chords' end
+    loads_drive = machine.constant < 0.0
+    if loads_drive:           # an engine: the loads drive, the constant moment is the consumer
+        work, work_g, other, sym = loads, loads_g, -line, ("A_d", "A_r")
+        t_g = loads_g + line_g
+    else:
+        work, work_g, other, sym = -loads, -loads_g, line, ("A_r", "A_d")
+        t_g = line_g + loads_g
+    m = make_graph("M", "M_r", "N·m", top=0.0, x=x, values=moment, at=at, height=GRAPH_MM)
+    top = m.origin[1] + m.low - GAP_MM
+    lo_ = min(0.0, float(np.min(work)), float(np.min(work_g)), float(np.min(other)))
+    hi_ = max(0.0, float(np.max(work)), float(np.max(work_g)), float(np.max(other)))
+    pole = _series_at_least(max(hi_ - lo_, 1e-300) / GRAPH_MM / (m.mu * mu_phi))
+    a = make_graph("A", "A", "J", top=top, x=x, values=work, at=at, graphical=(at, work_g), extra=other,
+                   extra_symbol=sym[1], mu=m.mu * mu_phi * pole)
+    top = a.origin[1] + a.low - GAP_MM
+    t = make_graph("T", "ΔT", "J", top=top, x=x, values=energy, at=at, graphical=(at, t_g), height=GRAPH_MM)
+    top = t.origin[1] + t.low - GAP_MM
+    i = make_graph("I", "I_r", "kg·m²", top=top, x=x, values=inertia, at=at, height=GRAPH_MM)
+    witt = _wittenbauer(machine, inertia, energy, at[:-1])
+    return DynamicsDiagrams(mu_phi=mu_phi, length=length, positions=n, pole=pole, loads_drive=loads_drive,
+                            graphs=(m, a, t, i), works=sym, wittenbauer=witt)
+
+
+def _wittenbauer(machine: MachineDynamics, inertia: np.ndarray, energy: np.ndarray, at: np.ndarray) -> Wittenbauer:
+    i_lo, i_hi = float(np.min(inertia)), float(np.max(inertia))
+    spread = max(i_hi - i_lo, 1e-9 * max(abs(i_hi), 1e-300))
+    i0 = 0.0
+    if i_lo > 0.5 * spread:       # the I axis starts at a round value below the curve, not at 0
+        step = nice_step(spread)
+        i0 = math.floor(i_lo / step) * step
+    mu_i = fitting_scale(i_hi - i0 if i_hi > i0 else spread, WITTENBAUER_MM[0] - 15.0)
+    x_of = lambda v: (v - i0) / mu_i          # noqa: E731
+    width = x_of(i_hi) + 15.0
+    wheel = machine.flywheel
+    raw = []
+    values = [0.0, float(np.min(energy)), float(np.max(energy))]
+    for which, tg in (("max", wheel.tangent_max), ("min", wheel.tangent_min)):
+        if tg is None:
+            continue
+        th, k, c = tg
+        it, et = float(machine.inertia(th)), float(machine.energy(th))
+        x_end = min(x_of(it) + 20.0, width - 2.0)
+        ends = (c + k * i0, c + k * (i0 + x_end * mu_i))
+        values += list(ends)
+        raw.append((which, k, it, et, x_end, ends))
+    lo, hi = min(values), max(values)
+    mu_t = fitting_scale(max(hi - lo, 1e-300), WITTENBAUER_MM[1])
+    tangents = tuple(Tangent(which, math.degrees(math.atan(k * mu_i / mu_t)), k, (x_of(it), et / mu_t),
+                             (0.0, ends[0] / mu_t), (x_end, ends[1] / mu_t), ends[0])
+                     for which, k, it, et, x_end, ends in raw)
+    segment = inertia_w = None
+    if len(tangents) == 2:
+        segment = tangents[0].value - tangents[1].value
+        inertia_w = segment / (machine.omega_m ** 2 * wheel.delta) - i0
+    curve = tuple((float(x_of(v)), float(e / mu_t)) for v, e in zip(inertia, energy))
+    pts = tuple((float(x_of(inertia[k])), float(energy[k] / mu_t), float(inertia[k]), float(energy[k])) for k in at)
+    i_ticks = tuple((v, x_of(v)) for v in ticks_for(i0, i_hi, 4) if x_of(v) >= -1e-9)
+    t_ticks = tuple((v, v / mu_t) for v in ticks_for(lo, hi, 8))
+    return Wittenbauer(mu_i=mu_i, mu_t=mu_t, i0=i0, curve=curve, at_positions=pts, i_ticks=i_ticks, t_ticks=t_ticks,
+                       width=width, low=lo / mu_t, high=hi / mu_t, tangents=tangents, segment=segment,
+                       inertia=inertia_w)

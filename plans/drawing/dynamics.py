@@ -1,0 +1,143 @@
+"""The dynamics sheet: M_r, the works A_r and A_d, ΔT and I_r against the crank's angle φ (the
+graphs of :mod:`.diagrams`, against φ instead of t), and Wittenbauer's energy–mass diagram to
+their right with its two tangents and the segment kl they cut on the ΔT axis.
+
+Wittenbauer's ``<g>`` states ``data-mu-i`` (kg·m²/mm), ``data-mu-t`` (J/mm), ``data-i0`` and
+``data-origin`` (paper x, y of I = I0, ΔT = 0); kl is a measured segment (``data-plan="bound"``,
+length × μT = its energy) and each dot of the curve carries ``data-inertia`` and ``data-energy``.
+"""
+
+from __future__ import annotations
+
+from ..constructions.dynamics import DynamicsDiagrams, Wittenbauer
+from .canvas import Canvas, fmt
+from .diagrams import LEFT_MM, RIGHT_MM, draw_graph
+from .marks import arrow
+from .positions import width_of
+from .sheet import FORMATS, TitleBlock, new_sheet, note_lines
+from .style import Style
+from .svg import Heading, _tag
+from .text import wrap
+
+__all__ = ["draw_dynamics"]
+
+#: Room between the graphs' right end and Wittenbauer's ΔT axis (its numbers included), mm.
+BETWEEN_MM = 34.0
+#: Room below the lowest drawing for the position numbers and the I_r scale, mm.
+BELOW_MM = 14.0
+#: Room for the notes: this much per line, mm.
+NOTE_LINE_MM = 4.0
+
+
+def _number(v: float) -> str:
+    return f"{v:.6g}".replace("-", "−")
+
+
+def draw_dynamics(d: DynamicsDiagrams, heading: Heading, *, ident: str, style: Style = Style(),
+                  notes: tuple[str, ...] = (), scales: str = "") -> str:
+    """SVG text of the dynamics sheet (see the module), ``scales`` for the title block."""
+    w = d.wittenbauer
+    area = FORMATS[2].area
+    note_rows = sum(len(wrap(line, area.x1 - area.x0 - 6.0, style.small_text)) for line in notes)
+    wx = d.length + RIGHT_MM + BETWEEN_MM            # Wittenbauer's ΔT axis
+    wy = -w.high                                     # its top level with the graphs' top
+    last = d.graphs[-1]
+    bottom = min(last.origin[1] + last.low, wy + w.low) - BELOW_MM - NOTE_LINE_MM * note_rows
+    box = (-LEFT_MM, bottom, wx + w.width + RIGHT_MM, 10.0)
+    dwg, canvas = new_sheet(FORMATS[2], box, ident=ident, style=style,
+                            block=TitleBlock(heading.mechanism, heading.sheet, heading.position, scales))
+    for g in d.graphs:
+        draw_graph(dwg, canvas, g, f"{ident}-{g.quantity}", style, mu_x=d.mu_phi, length=d.length, abscissa="φ")
+        if g.extra:           # the works: name the two curves where they are farthest apart
+            names = dwg.add(dwg.g(id=f"{ident}-{g.quantity}-names", fill=style.colour))
+            j = max(range(len(g.exact)), key=lambda k: abs(g.exact[k][1] - g.extra[k][1]))
+            up = 1.0 if g.exact[j][1] >= g.extra[j][1] else -1.0
+            for pts, name, key, side in ((g.exact, d.works[0], "a", up), (g.extra, d.works[1], "b", -up)):
+                canvas.label(names, pts[j], name, size=style.text, prefer=(0.3, side),
+                             ident=f"{ident}-{g.quantity}-name-{key}")
+    _wittenbauer(dwg, canvas, w, (wx, wy), f"{ident}-wittenbauer", style)
+    if notes:
+        note_lines(canvas, dwg.add(dwg.g(id=f"{ident}-notes")), notes, style)
+    canvas.place_labels(dwg.add(dwg.g(id=f"{ident}-leaders")))
+    return dwg.tostring()
+
+
+def _wittenbauer(dwg, canvas: Canvas, w: Wittenbauer, at: tuple[float, float], ident: str, style: Style) -> None:
+    ox, oy = at
+
+    def p(x: float, y: float) -> tuple[float, float]:
+        return ox + x, oy + y
+
+    thin, vec = fmt(style.thin, 3), fmt(style.vector, 3)
+    grp = dwg.g(id=ident, stroke=style.colour, fill="none", stroke_linecap="round")
+    grp.attribs["data-diagram"] = "wittenbauer"
+    grp.attribs["data-mu-i"] = repr(w.mu_i)
+    grp.attribs["data-mu-t"] = repr(w.mu_t)
+    grp.attribs["data-i0"] = repr(w.i0)
+    px, py = canvas.paper(p(0.0, 0.0))
+    grp.attribs["data-origin"] = f"{fmt(px, style.decimals)},{fmt(py, style.decimals)}"
+    texts = dwg.g(id=f"{ident}-text", fill=style.colour)
+    labels = dwg.g(id=f"{ident}-labels", fill=style.colour)
+    # the ΔT axis at I = I0, and the I axis at ΔT = 0
+    y_top = w.high + 6.0
+    canvas.line(grp, p(0.0, w.low), p(0.0, y_top), width=style.vector, stroke_width=vec, id=f"{ident}-taxis")
+    arrow(canvas, grp, p(0.0, w.low), p(0.0, y_top), style.colour, f"{ident}-thead", style, of=f"{ident}-taxis")
+    x_end = w.width + 5.0
+    canvas.line(grp, p(0.0, 0.0), p(x_end, 0.0), width=style.vector, stroke_width=vec, id=f"{ident}-iaxis")
+    arrow(canvas, grp, p(0.0, 0.0), p(x_end, 0.0), style.colour, f"{ident}-ihead", style, of=f"{ident}-iaxis")
+    for k, (value, y) in enumerate(w.t_ticks):
+        canvas.line(grp, p(-1.5, y), p(0.0, y), width=style.thin, stroke_width=thin, id=f"{ident}-tt{k}")
+        num = _number(value)
+        canvas.text(texts, canvas.paper(p(-2.5 - width_of(num, style.small_text), y - 0.9)), num,
+                    size=style.small_text, ident=f"{ident}-ttn{k}")
+    name = "ΔT, J"
+    canvas.text(texts, canvas.paper(p(-2.0 - width_of(name, style.text), y_top + 1.5)), name, size=style.text,
+                ident=f"{ident}-tname")
+    canvas.text(texts, canvas.paper(p(x_end + 1.5, -1.2)), "I_r", size=style.text, italic=True,
+                ident=f"{ident}-iname")
+    # the I scale below the diagram
+    ys = w.low - 9.0
+    canvas.line(grp, p(0.0, ys), p(x_end, ys), width=style.vector, stroke_width=vec, id=f"{ident}-iscale")
+    arrow(canvas, grp, p(0.0, ys), p(x_end, ys), style.colour, f"{ident}-iscale-head", style, of=f"{ident}-iscale")
+    for k, (value, x) in enumerate(w.i_ticks):
+        canvas.line(grp, p(x, ys), p(x, ys + 1.5), width=style.thin, stroke_width=thin, id=f"{ident}-it{k}")
+        num = _number(value)
+        canvas.text(texts, canvas.paper(p(x - width_of(num, style.small_text) / 2, ys - 4.5)), num,
+                    size=style.small_text, ident=f"{ident}-itn{k}")
+    canvas.text(texts, canvas.paper(p(x_end + 1.5, ys - 1.2)), "I_r, kg·m²", size=style.text,
+                ident=f"{ident}-iscale-name")
+    # the energy–mass curve and the positions on it
+    curve = canvas.polyline(grp, [p(x, y) for x, y in w.curve], width=style.vector, stroke_width=vec,
+                            stroke=style.vector_colour, id=f"{ident}-curve")
+    curve.attribs["data-kind"] = "exact"
+    dots = dwg.g(id=f"{ident}-dots", fill=style.vector_colour, stroke="none")
+    for k, (x, y, inertia, energy) in enumerate(w.at_positions):
+        el = canvas.circle(dots, p(x, y), 0.55, filled=True, id=f"{ident}-e{k}")
+        el.attribs["data-inertia"] = repr(inertia)
+        el.attribs["data-energy"] = repr(energy)
+        canvas.label(labels, p(x, y), str(k), size=style.small_text, italic=False, prefer=(-1.0, 1.0),
+                     ident=f"{ident}-pn{k}", near=0.6)
+    grp.add(dots)
+    # the tangents, their touch points, and the segment kl they cut on the ΔT axis
+    for tg, letter in zip(w.tangents, "kl"):
+        el = canvas.line(grp, p(*tg.start), p(*tg.end), width=style.thin, stroke_width=thin,
+                         stroke=style.component_colour, id=f"{ident}-tangent-{tg.which}")
+        el.attribs["data-psi"] = repr(tg.psi)
+        canvas.circle(grp, p(*tg.touch), 0.7, id=f"{ident}-touch-{tg.which}", stroke=style.component_colour,
+                      stroke_width=thin)
+        canvas.label(labels, p(*tg.end), f"ψ_{tg.which}", size=style.text, prefer=(1.0, 0.0),
+                     ident=f"{ident}-psi-{tg.which}")
+        canvas.label(labels, p(*tg.start), letter, size=style.text, prefer=(1.0, 0.3 if letter == "k" else -0.3),
+                     ident=f"{ident}-{letter}")
+    if w.segment is not None:
+        k, l_ = w.tangents[0].start, w.tangents[1].start
+        seg = dwg.g(id=f"{ident}-kl", stroke=style.component_colour, stroke_width=fmt(style.link, 3))
+        seg.attribs["data-mu"] = repr(w.mu_t)
+        seg.attribs["data-plan"] = "bound"
+        seg.attribs["data-vectors"] = "1"
+        el = canvas.line(seg, p(*l_), p(*k), width=style.link, id=f"{ident}-segment")
+        _tag(el, canvas, "kl", abs(w.segment), p(*l_), p(*k), "l", "k")
+        grp.add(seg)
+    grp.add(texts)
+    dwg.add(grp)
+    dwg.add(labels)
