@@ -92,6 +92,7 @@ ATLAS = {
     "six_link_press_flywheel": Entry(II_II),
     "shaper_flywheel": Entry(II_II),
     "compressor_flywheel": Entry(II),
+    "six_link_press_startup": Entry(II_II),
 }
 
 
@@ -105,12 +106,13 @@ def load(stem: str) -> dict:
         data["drive"].setdefault("angle", 0.0)      # start = "extreme" gave the cycle's first angle
     # what belongs to the cycle goes with it: [dynamics], and the forces that follow the output
     data.pop("dynamics", None)
+    data.pop("motor", None)
     data["forces"] = [f for f in data.get("forces", []) if not {"law", "stroke"} & set(f)]
     for key in ("output", "at", "trace"):
         data.get("plans", {}).pop(key, None)
     draw = data.get("plans", {}).get("draw")
     if draw:
-        data["plans"]["draw"] = [d for d in draw if d not in ("positions", "diagrams", "velocities", "dynamics")]
+        data["plans"]["draw"] = [d for d in draw if d not in ("positions", "diagrams", "velocities", "dynamics", "startup")]
     return data
 
 

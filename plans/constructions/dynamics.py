@@ -24,11 +24,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..dynamics import MachineDynamics
+from ..dynamics import MachineDynamics, Startup
 from .diagrams import Graph, make_graph, nice_step, ticks_for
 from .scales import SERIES, fitting_scale
 
-__all__ = ["DynamicsDiagrams", "Wittenbauer", "Tangent", "dynamics_diagrams", "PHI_MM", "GRAPH_MM", "GAP_MM",
+__all__ = ["DynamicsDiagrams", "Wittenbauer", "Tangent", "dynamics_diagrams", "StartupDiagrams", "startup_diagrams", "PHI_MM", "GRAPH_MM", "GAP_MM",
            "WITTENBAUER_MM"]
 
 #: Largest length of the φ axis (one revolution), mm.
@@ -186,3 +186,38 @@ def _wittenbauer(machine: MachineDynamics, inertia: np.ndarray, energy: np.ndarr
     return Wittenbauer(mu_i=mu_i, mu_t=mu_t, i0=i0, curve=curve, at_positions=pts, i_ticks=i_ticks, t_ticks=t_ticks,
                        width=width, low=lo / mu_t, high=hi / mu_t, tangents=tangents, segment=segment,
                        inertia=inertia_w)
+
+
+@dataclass(frozen=True)
+class StartupDiagrams:
+    """The start-up against time: ``mu_t`` (s/mm), ``length`` (mm, t_end), ``graphs`` ω(t)
+    and the moments (the motor's; the loads', as ``extra``), ``time_ticks`` (t s, x mm) and
+    ``steady`` (y mm of ω_max, ω_min on the ω graph) when the steady cycle was found."""
+
+    mu_t: float
+    length: float
+    graphs: tuple[Graph, ...]
+    time_ticks: tuple[tuple[float, float], ...]
+    steady: tuple[float, float] | None
+
+
+#: Width of the start-up's time axis and height of its graphs, mm.
+STARTUP_MM = (330.0, 85.0)
+#: Ordinates measured on the start-up's graphs: at this many equal steps of t.
+STARTUP_ORDINATES = 12
+
+
+def startup_diagrams(start: Startup) -> StartupDiagrams:
+    """The start-up sheet's geometry from a simulated :class:`~plans.dynamics.Startup`."""
+    mu_t = fitting_scale(start.t_end, STARTUP_MM[0])
+    x = start.t / mu_t
+    n = len(start.t)
+    at = np.unique(np.round(np.linspace(0, n - 1, STARTUP_ORDINATES + 1)).astype(int))
+    w = make_graph("w", "ω_1", "rad/s", top=0.0, x=x, values=start.omega, at=at, height=STARTUP_MM[1])
+    m = make_graph("M", "M", "N·m", top=w.origin[1] + w.low - GAP_MM - 6.0, x=x, values=start.motor, at=at,
+                   extra=start.load, extra_symbol="M_r", height=STARTUP_MM[1])
+    ticks = tuple((tv, tv / mu_t) for tv in ticks_for(0.0, start.t_end, 10) if tv / mu_t <= x[-1] + 1e-9)
+    steady = None
+    if start.steady is not None:
+        steady = (w.origin[1] + start.steady.omega_max / w.mu, w.origin[1] + start.steady.omega_min / w.mu)
+    return StartupDiagrams(mu_t=mu_t, length=float(x[-1]), graphs=(w, m), time_ticks=ticks, steady=steady)

@@ -20,7 +20,7 @@ from .style import Style
 from .svg import Heading, _tag
 from .positions import width_of
 
-__all__ = ["draw_diagrams", "draw_graph", "LEFT_MM", "RIGHT_MM"]
+__all__ = ["draw_diagrams", "draw_graph", "time_axis", "LEFT_MM", "RIGHT_MM"]
 
 #: Room left of the value axes (numbers, names) and right of the time axes, mm.
 LEFT_MM = 24.0
@@ -48,7 +48,7 @@ def draw_diagrams(d: Diagrams, heading: Heading, *, ident: str, style: Style = S
                             block=TitleBlock(heading.mechanism, heading.sheet, heading.position, scales))
     for k, g in enumerate(d.graphs):
         draw_graph(dwg, canvas, g, f"{ident}-{g.quantity}", style, mu_x=d.mu_t, length=d.length)
-    _time_axis(dwg, canvas, d, last, ident, style)
+    time_axis(dwg, canvas, d.length, d.time_ticks, last, ident, style)
     if notes:
         note_lines(canvas, dwg.add(dwg.g(id=f"{ident}-notes")), notes, style)
     canvas.place_labels(dwg.add(dwg.g(id=f"{ident}-leaders")))
@@ -127,15 +127,16 @@ def draw_graph(dwg, canvas: Canvas, g: Graph, ident: str, style: Style, *, mu_x:
     dwg.add(grp)
 
 
-def _time_axis(dwg, canvas: Canvas, d: Diagrams, last: Graph, ident: str, style: Style) -> None:
-    """A time axis in seconds below the last graph, aligned with the graphs' time axes."""
+def time_axis(dwg, canvas: Canvas, length: float, ticks, last: Graph, ident: str, style: Style) -> None:
+    """A time axis in seconds below the ``last`` graph, aligned with the graphs' time axes
+    (``length`` mm, ``ticks`` (t s, x mm))."""
     y = last.origin[1] + last.low - 9.0
     g = dwg.g(id=f"{ident}-time", stroke=style.colour, fill="none")
     texts = dwg.g(id=f"{ident}-time-text", fill=style.colour)
-    x_end = d.length + 7.0
+    x_end = length + 7.0
     canvas.line(g, (0.0, y), (x_end, y), width=style.vector, stroke_width=fmt(style.vector, 3), id=f"{ident}-time-axis")
     arrow(canvas, g, (0.0, y), (x_end, y), style.colour, f"{ident}-time-head", style, of=f"{ident}-time-axis")
-    for k, (t, x) in enumerate(d.time_ticks):
+    for k, (t, x) in enumerate(ticks):
         canvas.line(g, (x, y), (x, y - 1.5), width=style.thin, stroke_width=fmt(style.thin, 3), id=f"{ident}-tt{k}")
         num = _number(t)
         canvas.text(texts, canvas.paper((x - width_of(num, style.small_text) / 2, y - 4.5)), num,

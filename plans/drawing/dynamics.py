@@ -1,17 +1,18 @@
-"""The dynamics sheet: M_r, the works A_r and A_d, ΔT and I_r against the crank's angle φ (the
+"""The dynamics sheets. The steady cycle: M_r, the works A_r and A_d, ΔT and I_r against the crank's angle φ (the
 graphs of :mod:`.diagrams`, against φ instead of t), and Wittenbauer's energy–mass diagram to
 their right with its two tangents and the segment kl they cut on the ΔT axis.
 
 Wittenbauer's ``<g>`` states ``data-mu-i`` (kg·m²/mm), ``data-mu-t`` (J/mm), ``data-i0`` and
 ``data-origin`` (paper x, y of I = I0, ΔT = 0); kl is a measured segment (``data-plan="bound"``,
 length × μT = its energy) and each dot of the curve carries ``data-inertia`` and ``data-energy``.
+The start-up: ω(t) and the moments against time, as the kinematic diagrams are drawn.
 """
 
 from __future__ import annotations
 
-from ..constructions.dynamics import DynamicsDiagrams, Wittenbauer
+from ..constructions.dynamics import DynamicsDiagrams, StartupDiagrams, Wittenbauer
 from .canvas import Canvas, fmt
-from .diagrams import LEFT_MM, RIGHT_MM, draw_graph
+from .diagrams import LEFT_MM, RIGHT_MM, draw_graph, time_axis
 from .marks import arrow
 from .positions import width_of
 from .sheet import FORMATS, TitleBlock, new_sheet, note_lines
@@ -19,7 +20,7 @@ from .style import Style
 from .svg import Heading, _tag
 from .text import wrap
 
-__all__ = ["draw_dynamics"]
+__all__ = ["draw_dynamics", "draw_startup"]
 
 #: Room between the graphs' right end and Wittenbauer's ΔT axis (its numbers included), mm.
 BETWEEN_MM = 34.0
@@ -141,3 +142,34 @@ def _wittenbauer(dwg, canvas: Canvas, w: Wittenbauer, at: tuple[float, float], i
     grp.add(texts)
     dwg.add(grp)
     dwg.add(labels)
+
+
+def draw_startup(d: StartupDiagrams, heading: Heading, *, ident: str, style: Style = Style(),
+                 notes: tuple[str, ...] = (), scales: str = "") -> str:
+    """SVG text of the start-up sheet: ω(t) with the steady cycle's ω_max and ω_min (dashed),
+    and the motor's and the loads' moments at the crank against time."""
+    area = FORMATS[2].area
+    rows = sum(len(wrap(line, area.x1 - area.x0 - 6.0, style.small_text)) for line in notes)
+    last = d.graphs[-1]
+    bottom = last.origin[1] + last.low - 16.0 - NOTE_LINE_MM * rows
+    box = (-LEFT_MM, bottom, d.length + RIGHT_MM + 8.0, 10.0)
+    dwg, canvas = new_sheet(FORMATS[2], box, ident=ident, style=style,
+                            block=TitleBlock(heading.mechanism, heading.sheet, heading.position, scales))
+    for g in d.graphs:
+        draw_graph(dwg, canvas, g, f"{ident}-{g.quantity}", style, mu_x=d.mu_t, length=d.length, numbered=False)
+    if d.steady is not None:
+        band = dwg.add(dwg.g(id=f"{ident}-steady", stroke=style.component_colour, fill="none"))
+        for y, key in zip(d.steady, ("max", "min")):
+            canvas.line(band, (0.0, y), (d.length, y), width=style.thin, stroke_width=fmt(style.thin, 3),
+                        stroke_dasharray="2 1", id=f"{ident}-steady-{key}")
+    m = d.graphs[1]
+    names = dwg.add(dwg.g(id=f"{ident}-M-names", fill=style.colour))
+    j = max(range(len(m.exact)), key=lambda k: abs(m.exact[k][1] - m.extra[k][1]))
+    up = 1.0 if m.exact[j][1] >= m.extra[j][1] else -1.0
+    canvas.label(names, m.exact[j], "M_motor", size=style.text, prefer=(0.3, up), ident=f"{ident}-M-name-a")
+    canvas.label(names, m.extra[j], "M_r", size=style.text, prefer=(0.3, -up), ident=f"{ident}-M-name-b")
+    time_axis(dwg, canvas, d.length, d.time_ticks, last, ident, style)
+    if notes:
+        note_lines(canvas, dwg.add(dwg.g(id=f"{ident}-notes")), notes, style)
+    canvas.place_labels(dwg.add(dwg.g(id=f"{ident}-leaders")))
+    return dwg.tostring()

@@ -1,11 +1,15 @@
 """The machine's motion under its loads (the second problem of dynamics): the loads and masses
 reduced to the crank, the work and energy over a steady cycle, the flywheel for an allowed
-coefficient of speed fluctuation, and the true speed of the crank. Numeric; reads a solved
+coefficient of speed fluctuation, the true speed of the crank, and the start-up by a motor
+(integrated in time by SciPy). Numeric; reads a solved
 :class:`~plans.kinematics.cycle.Cycle` (and solves the kinematics at the points its exact
 integrals need); never draws."""
 
 from .machine import Flywheel, MachineDynamics, flywheel_for, machine_dynamics
+from .motor import motor_moment, no_load_speed
 from .piecewise import Piecewise
 from .reduced import Reduced, reduce
+from .startup import Startup, Steady, startup, steady_cycle
 
-__all__ = ["Flywheel", "MachineDynamics", "machine_dynamics", "flywheel_for", "Piecewise", "Reduced", "reduce"]
+__all__ = ["Flywheel", "MachineDynamics", "machine_dynamics", "flywheel_for", "Piecewise", "Reduced", "reduce",
+           "Startup", "Steady", "startup", "steady_cycle", "motor_moment", "no_load_speed"]

@@ -37,7 +37,7 @@ from .sheets.page import Page
 from .sheets.plans import plan_sheets
 from .sheets.scheme import scheme_sheets
 from .sheets.dynamics import dynamics_sheets, dynamics_warnings
-from .stages import force_analysis, machine_motion, record_stages, solve_motion, solve_scene
+from .stages import force_analysis, machine_motion, machine_startup, record_stages, solve_motion, solve_scene
 
 __all__ = ["Rendered", "Sheet", "Sheets", "render", "render_scene", "report", "solve_scene", "record_stages",
            "stem_of", "at_rest", "read_scene", "LEVER_RTOL", "MAX_STEM_CHARS"]
@@ -80,6 +80,7 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
         scales = scene_scales(scene, motion, rest)
         forces = force_analysis(scene, motion, cycle)
         machine = machine_motion(scene, cycle)
+        started = machine_startup(scene, machine)
     except PlansError as exc:
         raise exc.in_file(where) if where and hasattr(exc, "in_file") else exc
     check_triads(motion, path)
@@ -104,7 +105,7 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
         sheets, data["cycle"] = cycle_sheets(scene, cycle, scales, stem, style)
         files.update(sheets)
     if machine is not None:
-        sheets, data["cycle"]["dynamics"] = dynamics_sheets(scene, machine, forces, levers, stem, style)
+        sheets, data["cycle"]["dynamics"] = dynamics_sheets(scene, machine, forces, levers, stem, style, started)
         files.update(sheets)
         warnings.extend(f"{path}: {w}" for w in dynamics_warnings(machine))
     if train is not None:

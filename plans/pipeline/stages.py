@@ -12,7 +12,7 @@ from typing import Iterator
 
 import numpy as np
 
-from ..dynamics import MachineDynamics, machine_dynamics
+from ..dynamics import MachineDynamics, Startup, machine_dynamics, startup
 from ..errors import SceneError
 from ..kinematics import Motion, analyse
 from ..kinematics.cycle import Cycle, solve_cycle
@@ -103,3 +103,11 @@ def machine_motion(scene: Scene, cycle: Cycle | None) -> MachineDynamics | None:
         return None
     _ran("dynamics")
     return machine_dynamics(scene, cycle)
+
+
+def machine_startup(scene: Scene, machine: MachineDynamics | None) -> Startup | None:
+    """The start-up by the motor in time, when ``[dynamics]`` asks to simulate it."""
+    if machine is None or scene.dynamics.simulate is None:
+        return None
+    _ran("startup")
+    return startup(machine, scene.dynamics.motor, scene.dynamics.simulate.t_end)

@@ -22,7 +22,7 @@ from .gears import GearTrain
 from .values import MAX_TITLE_CHARS, Scene
 
 _TOP_KEYS = {"title", "description", "points", "links", "sliders", "drive", "lengths", "plans", "scales",
-             "masses", "forces", "moments", "gravity", "balance", "gears", "synthesis", "dynamics"}
+             "masses", "forces", "moments", "gravity", "balance", "gears", "synthesis", "dynamics", "motor"}
 #: The keys of a scene that is a gear train alone (no [points], [links], [drive]).
 _TRAIN_KEYS = {"title", "description", "plans", "scales", "gears", "synthesis"}
 
@@ -97,10 +97,16 @@ def _parse(data: Mapping[str, Any], file: str | None) -> Scene:
     moments = read_moments(data.get("moments", []), links)
     gravity = read_gravity(data)
     balance = read_balance(data["balance"] if "balance" in data else None, drive, links, points)
-    dynamics = read_dynamics(data["dynamics"]) if "dynamics" in data else None
+    if "motor" in data and "dynamics" not in data:
+        raise SceneError("[motor] drives the machine in [dynamics]: add [dynamics] (delta or flywheel, and "
+                         'driving = "motor" or simulate)', key="motor")
+    dynamics = read_dynamics(data["dynamics"], data.get("motor")) if "dynamics" in data else None
     if "dynamics" in draw and dynamics is None:
         raise SceneError('draw "dynamics" shows the machine\'s motion under its loads: add [dynamics] with delta '
                          '(the allowed coefficient of speed fluctuation) or flywheel', key="plans.draw")
+    if "startup" in draw and (dynamics is None or dynamics.simulate is None):
+        raise SceneError('draw "startup" shows the motor start-up: add [motor] and [dynamics] simulate = '
+                         '{ t_end = 10.0 }', key="plans.draw")
     if dynamics is not None:
         if cycle is None:
             raise SceneError("[dynamics] finds the machine's motion over a steady cycle: add [drive] positions = N "

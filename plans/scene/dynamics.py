@@ -13,10 +13,12 @@ from typing import Any, Mapping
 from ..errors import SceneError
 from .checks import SHOW, number
 
-__all__ = ["Dynamics", "read_dynamics", "DRIVINGS", "MAX_DELTA"]
+__all__ = ["Dynamics", "Motor", "Simulation", "read_dynamics", "DRIVINGS", "MAX_DELTA"]
 
 #: How the crank is driven over the steady cycle.
 DRIVINGS = ("constant",)
+#: Longest start-up simulated, s.
+MAX_T_END = 3600.0
 #: Largest coefficient of speed fluctuation δ: at δ = 2 the crank would stop (ω_min = ω_m(1 − δ/2));
 #: a machine is designed for δ of 1/5 at most (pumps ~1/30, presses 1/10–1/20, generators 1/200).
 MAX_DELTA = 0.5
@@ -25,25 +27,53 @@ MAX_INERTIA = 1e20
 
 
 @dataclass(frozen=True)
+class Motor:
+    """``[motor]``, its moment reduced to the crank through ``ratio`` i = n_motor/n_crank (the
+    gears' losses neglected): either ``torque`` a table ((rpm, N·m), …) of the motor's shaft,
+    speeds strictly increasing, linear between and beyond its ends; or an induction motor by
+    Kloss' formula M = 2·M_k/(s/s_k + s_k/s) from ``power`` (rated, W), ``rated_rpm``,
+    ``synchronous_rpm`` and ``breakdown`` λ = M_k/M_rated (s the slip, s_k = s_r(λ + √(λ² − 1)))."""
+
+    ratio: float = 1.0
+    torque: tuple[tuple[float, float], ...] = ()
+    power: float | None = None
+    rated_rpm: float | None = None
+    synchronous_rpm: float | None = None
+    breakdown: float | None = None
+
+
+@dataclass(frozen=True)
+class Simulation:
+    """``[dynamics] simulate``: the start-up in time from rest to ``t_end`` (s)."""
+
+    t_end: float
+    start: str = "rest"
+
+
+@dataclass(frozen=True)
 class Dynamics:
     """``[dynamics]``: ``delta`` the allowed coefficient of speed fluctuation
     δ = (ω_max − ω_min)/ω_m (the flywheel is found for it), or ``flywheel`` a given flywheel's
     inertia J (kg·m², the δ it keeps is found); ``rotor_inertia`` (kg·m²) the motor's and gears'
     inertia reduced to the crank, always turning with it; ``driving``: "constant", the moment on
-    the crank constant over the steady cycle and equal to the mean of the loads' reduced moment."""
+    the crank constant over the steady cycle and equal to the mean of the loads' reduced moment;
+    ``motor`` the ``[motor]`` and ``simulate`` its start-up (needs the motor)."""
 
     delta: float | None = None
     flywheel: float | None = None
     rotor_inertia: float = 0.0
     driving: str = "constant"
+    motor: Motor | None = None
+    simulate: Simulation | None = None
 
 
-def read_dynamics(table: Any) -> Dynamics:
-    """``[dynamics]``: delta or flywheel, rotor_inertia, driving."""
+def read_dynamics(table: Any, motor: Any = None) -> Dynamics:
+    """``[dynamics]``: delta or flywheel, rotor_inertia, driving, simulate; ``motor`` the
+    ``[motor]`` table, if any."""
     if not isinstance(table, Mapping):
         raise SceneError("[dynamics] must be a table: delta = 0.05 (the allowed coefficient of speed fluctuation)",
                          key="dynamics")
-    allowed = {"delta", "flywheel", "rotor_inertia", "driving"}
+    allowed = {"delta", "flywheel", "rotor_inertia", "driving", "simulate"}
     extra = sorted(str(k) for k in set(table) - allowed)
     if extra:
         raise SceneError(f"unknown key {extra[0]!r}; [dynamics] has {', '.join(sorted(allowed))}",
@@ -68,5 +98,83 @@ def read_dynamics(table: Any) -> Dynamics:
     driving = table.get("driving", "constant")
     if driving not in DRIVINGS:
         raise SceneError(f"driving is {' or '.join(repr(d) for d in DRIVINGS)} (the moment on the crank constant "
-                         f"over the steady cycle); got {SHOW.repr(driving)}", key="dynamics.driving")
-    return Dynamics(delta=delta, flywheel=flywheel, rotor_inertia=rotor, driving=driving)
+                         f"over the steady cycle, or the [motor]'s); got {SHOW.repr(driving)}", key="dynamics.driving")
+    engine = read_motor(motor) if motor is not None else None
+    simulate = None
+    if "simulate" in table:
+        simulate = _read_simulation(table["simulate"])
+        if engine is None:
+            raise SceneError("simulate runs the start-up under the motor's moment: add [motor]", key="dynamics.simulate")
+    return Dynamics(delta=delta, flywheel=flywheel, rotor_inertia=rotor, driving=driving, motor=engine,
+                    simulate=simulate)
+
+
+def _read_simulation(table: Any) -> Simulation:
+    if not isinstance(table, Mapping) or "t_end" not in table:
+        raise SceneError('simulate is a table: { t_end = 10.0, from = "rest" } (seconds of the start-up)',
+                         key="dynamics.simulate")
+    extra = sorted(str(k) for k in set(table) - {"t_end", "from"})
+    if extra:
+        raise SceneError(f"unknown key {extra[0]!r}; simulate has t_end and from", key=f"dynamics.simulate.{extra[0]}")
+    t_end = number(table["t_end"], "dynamics.simulate.t_end", bound=MAX_T_END, why=" s")
+    if not t_end > 0.0:
+        raise SceneError(f"t_end is the start-up's duration, more than 0 s, got {t_end:g}",
+                         key="dynamics.simulate.t_end")
+    start = table.get("from", "rest")
+    if start != "rest":
+        raise SceneError(f'from is "rest" (the start-up begins with the crank at rest at its first position); '
+                         f"got {SHOW.repr(start)}", key="dynamics.simulate.from")
+    return Simulation(t_end=t_end, start=start)
+
+
+def read_motor(table: Any) -> Motor:
+    """``[motor]``: ratio, and a torque table or power, rated_rpm, synchronous_rpm, breakdown."""
+    if not isinstance(table, Mapping):
+        raise SceneError("[motor] must be a table: torque = [[rpm, N·m], ...] or power, rated_rpm, synchronous_rpm, "
+                         "breakdown", key="motor")
+    kloss = ("power", "rated_rpm", "synchronous_rpm", "breakdown")
+    allowed = {"ratio", "torque", *kloss}
+    extra = sorted(str(k) for k in set(table) - allowed)
+    if extra:
+        raise SceneError(f"unknown key {extra[0]!r}; [motor] has {', '.join(sorted(allowed))}", key=f"motor.{extra[0]}")
+    ratio = number(table.get("ratio", 1.0), "motor.ratio", bound=1e6)
+    if not ratio > 0.0:
+        raise SceneError(f"ratio = n_motor/n_crank is positive, got {ratio:g}", key="motor.ratio")
+    has_table, has_kloss = "torque" in table, any(k in table for k in kloss)
+    if has_table == has_kloss:
+        raise SceneError("give the motor's torque = [[rpm, N·m], ...] or its power, rated_rpm, synchronous_rpm and "
+                         "breakdown (Kloss' formula), one of the two", key="motor")
+    if has_table:
+        rows = table["torque"]
+        if not isinstance(rows, list) or len(rows) < 2:
+            raise SceneError("torque is a table of at least two [rpm, N·m] rows, speeds increasing",
+                             key="motor.torque")
+        pts = []
+        for k, row in enumerate(rows):
+            if not isinstance(row, list) or len(row) != 2:
+                raise SceneError(f"torque row {k} must be [rpm, N·m], got {SHOW.repr(row)}", key="motor.torque")
+            pts.append((number(row[0], f"motor.torque[{k}][0]", bound=1e7, why=" rpm"),
+                        number(row[1], f"motor.torque[{k}][1]", bound=1e12, why=" N·m")))
+        for k in range(1, len(pts)):
+            if not pts[k][0] > pts[k - 1][0]:
+                raise SceneError(f"torque's speeds must increase strictly: row {k} has {pts[k][0]:g} rpm after "
+                                 f"{pts[k - 1][0]:g}", key="motor.torque")
+        if pts[0][0] < 0.0:
+            raise SceneError(f"torque's speeds start at 0 rpm or more, got {pts[0][0]:g}", key="motor.torque")
+        return Motor(ratio=ratio, torque=tuple(pts))
+    missing = [k for k in kloss if k not in table]
+    if missing:
+        raise SceneError(f"an induction motor by Kloss' formula needs {', '.join(kloss)}: {missing[0]} is missing",
+                         key=f"motor.{missing[0]}")
+    power = number(table["power"], "motor.power", bound=1e9, why=" W")
+    rated = number(table["rated_rpm"], "motor.rated_rpm", bound=1e6, why=" rpm")
+    sync = number(table["synchronous_rpm"], "motor.synchronous_rpm", bound=1e6, why=" rpm")
+    lam = number(table["breakdown"], "motor.breakdown", bound=100.0)
+    if not power > 0.0:
+        raise SceneError(f"power is the rated power, more than 0 W, got {power:g}", key="motor.power")
+    if not 0.0 < rated < sync:
+        raise SceneError(f"rated_rpm is below synchronous_rpm (the slip is positive) and above 0: got {rated:g} "
+                         f"and {sync:g}", key="motor.rated_rpm")
+    if not lam > 1.0:
+        raise SceneError(f"breakdown λ = M_max/M_rated is more than 1 (about 2–3), got {lam:g}", key="motor.breakdown")
+    return Motor(ratio=ratio, power=power, rated_rpm=rated, synchronous_rpm=sync, breakdown=lam)

@@ -20,11 +20,11 @@ from .gears import GearTrain, Synthesis
 FRAME = "0"
 #: The sheets a scene may draw (``[plans] draw``), in the order they are drawn.
 DRAWABLE = ("scheme", "velocity", "acceleration", "centres", "positions", "diagrams", "velocities", "forces", "lever",
-            "gears", "dynamics")
+            "gears", "dynamics", "startup")
 #: What needs the force analysis (kinetostatics): the force plans and Zhukovsky's lever.
 FORCE_SHEETS = ("forces", "lever")
 #: Sheets of the whole cycle: they need ``[drive] positions = N``.
-CYCLE_SHEETS = ("positions", "diagrams", "velocities", "dynamics")
+CYCLE_SHEETS = ("positions", "diagrams", "velocities", "dynamics", "startup")
 #: Fewest and most positions of a cycle (``[drive] positions``): three chords at least for the
 #: graphical differentiation; one a degree at most (as MAX_POSITIONS).
 MIN_CYCLE_POSITIONS = 3

@@ -10,11 +10,12 @@ from typing import Mapping
 
 import numpy as np
 
-from ...constructions.dynamics import DynamicsDiagrams, dynamics_diagrams
+from ...constructions.dynamics import DynamicsDiagrams, dynamics_diagrams, startup_diagrams
 from ...constructions.forces import Lever
 from ...drawing import Heading, Style
-from ...drawing.dynamics import draw_dynamics
-from ...dynamics import MachineDynamics
+from ...drawing.dynamics import draw_dynamics, draw_startup
+from ...dynamics import MachineDynamics, Startup
+from ...dynamics.startup import STEADY_BAND
 from ...kinetostatics import Forces
 from ...scene import Scene
 
@@ -29,8 +30,9 @@ def balance_from_dynamics(machine: MachineDynamics, omega1: float) -> np.ndarray
 
 
 def dynamics_sheets(scene: Scene, machine: MachineDynamics, forces: Forces | None, levers: Mapping[int, Lever],
-                    stem: str, style: Style) -> tuple[dict[str, str], dict]:
-    """The dynamics sheet (when drawn) and the report's ``cycle.dynamics``."""
+                    stem: str, style: Style, started: Startup | None = None) -> tuple[dict[str, str], dict]:
+    """The dynamics and start-up sheets (when drawn) and the report's ``cycle.dynamics``
+    (with ``startup`` when simulated)."""
     th = machine.theta
     s = machine.sense
     wheel = machine.flywheel
@@ -76,7 +78,57 @@ def dynamics_sheets(scene: Scene, machine: MachineDynamics, forces: Forces | Non
                          "wittenbauer": {"mu_i": w.mu_i, "mu_t": w.mu_t, "i0": w.i0, "segment": w.segment,
                                          "inertia": w.inertia,
                                          "psi": {t.which: t.psi for t in w.tangents}}}
+    if started is not None:
+        data["startup"] = _startup_data(machine, started)
+        if "startup" in scene.draw:
+            files[f"{stem}-startup.svg"] = _startup_sheet(scene, machine, started, style)
     return files, data
+
+
+def _startup_data(machine: MachineDynamics, st: Startup) -> dict:
+    s = machine.sense
+    out: dict = {"t_end": st.t_end, "solver": "DOP853", "rtol": st.rtol, "atol": st.atol,
+                 "evaluations": st.evaluations, "time_to_steady": st.time_to_steady,
+                 "t": [float(x) for x in st.t],
+                 "phi": [float(x) for x in (machine.start + s * np.degrees(st.theta))],
+                 "omega": [float(x) for x in s * st.omega],
+                 "motor_moment": [float(x) for x in s * st.motor],
+                 "load_moment": [float(x) for x in s * st.load],
+                 "steady": None, "last_revolution": None}
+    if st.steady is not None:
+        q = st.steady
+        out["steady"] = {"omega_mean": q.omega_mean, "omega_max": q.omega_max, "omega_min": q.omega_min,
+                         "delta": q.delta, "flywheel_delta": machine.flywheel.delta,
+                         "difference": abs(q.delta - machine.flywheel.delta) / machine.flywheel.delta}
+    if st.last is not None:
+        out["last_revolution"] = {"omega_max": st.last[0], "omega_min": st.last[1], "delta": st.last[2]}
+    return out
+
+
+def _startup_sheet(scene: Scene, machine: MachineDynamics, st: Startup, style: Style) -> str:
+    d = startup_diagrams(st)
+    w, m = d.graphs
+    motor = scene.dynamics.motor
+    what = (f"motor {motor.power:g} W, {motor.rated_rpm:g}/{motor.synchronous_rpm:g} rpm, λ = "
+            f"{motor.breakdown:g}") if not motor.torque else "motor by its torque table"
+    position = f"from rest at φ_{scene.drive.link} = {machine.start % 360.0:.6g}°, {what}, i = {motor.ratio:g}"
+    law = "Kloss' formula" if not motor.torque else "its torque–speed table"
+    notes = [f"(I_r + J)·dω/dt + ½·(dI_r/dφ)·ω² = M_motor(ω) + M_r(φ), moments at the crank in its sense of rotation "
+             f"(M_r < 0 where the loads resist), M_motor by {law} through the ratio i; J = {machine.J:.6g} kg·m² "
+             f"(the flywheel) and the rotor's {machine.rotor:g} kg·m² in I_r. Integrated by SciPy's DOP853 (explicit "
+             f"Runge–Kutta of order 8 with error control), rtol = {st.rtol:g}, atol = {st.atol:g}, "
+             f"{st.evaluations} evaluations."]
+    if st.steady is not None:
+        q = st.steady
+        reached = f"steady from t = {st.time_to_steady:.4g} s" if st.time_to_steady is not None else \
+            f"not steady by t = {st.t_end:g} s"
+        notes.append(f"Steady cycle (dashed: ω_max = {q.omega_max:.6g}, ω_min = {q.omega_min:.6g} rad/s): ω_m = "
+                     f"{q.omega_mean:.6g} rad/s, δ = {q.delta:.5g} ({reached}, ω within ±{100 * STEADY_BAND:g} % of "
+                     f"ω_m of the band); the flywheel was found for δ = {machine.flywheel.delta:.4g} with a constant "
+                     f"driving moment: the motor's falling characteristic gives {q.delta:.4g}.")
+    scales = f"μ_t = {d.mu_t:g} s/mm; μ_ω = {w.mu:g} rad/s/mm; μ_M = {m.mu:g} N·m/mm"
+    return draw_startup(d, Heading(scene.title, "Start-up by the motor", position), ident="startup", style=style,
+                        notes=tuple(notes), scales=scales)
 
 
 def _scales(d: DynamicsDiagrams) -> str:

@@ -1,0 +1,170 @@
+"""The start-up by a motor (issue 18, item 5): Kloss' formula against its defining points, the
+energy balance of the simulated start-up against the links' kinetic energy summed here, the
+steady cycle it settles into against the periodic solution, and the refusals."""
+
+from __future__ import annotations
+
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from conftest import EXAMPLES as _ALL
+from plans import render
+from plans.checking import check_svg
+from plans.dynamics import machine_dynamics, motor_moment, no_load_speed, startup
+from plans.kinematics import analyse
+from plans.pipeline import record_stages
+from plans.pipeline.stages import solve_motion
+from plans.scene import read_scene
+from plans.scene.dynamics import Motor
+
+EXAMPLES = _ALL[0].parent
+NAME = "six_link_press_startup"
+RPM = 2 * math.pi / 60
+
+
+@pytest.fixture(scope="module")
+def solved():
+    scene = read_scene(EXAMPLES / f"{NAME}.toml")
+    motion, cycle = solve_motion(scene)
+    machine = machine_dynamics(scene, cycle)
+    return scene, motion, machine, startup(machine, scene.dynamics.motor, scene.dynamics.simulate.t_end)
+
+
+def test_kloss_through_its_rated_and_breakdown_points():
+    m = Motor(ratio=3.0, power=4000.0, rated_rpm=1440.0, synchronous_rpm=1500.0, breakdown=2.5)
+    rated = 4000.0 / (1440.0 * RPM)
+    at = lambda rpm: float(motor_moment(m, rpm * RPM / 3.0))        # noqa: E731  (crank speed = motor/3)
+    assert at(1440.0) == pytest.approx(3.0 * rated, rel=1e-12)
+    s_r = 1 - 1440 / 1500
+    s_k = s_r * (2.5 + math.sqrt(2.5 ** 2 - 1))
+    assert at(1500.0 * (1 - s_k)) == pytest.approx(3.0 * 2.5 * rated, rel=1e-12)
+    rpm = np.linspace(0.0, 1499.0, 3000)
+    assert max(at(r) for r in rpm) <= 3.0 * 2.5 * rated * (1 + 1e-12)
+    assert at(1500.0) == 0.0 and at(1520.0) < 0.0
+    assert no_load_speed(m) == pytest.approx(1500.0 * RPM / 3.0, rel=1e-15)
+
+
+def test_torque_table_is_linear_between_and_beyond_its_rows():
+    m = Motor(ratio=2.0, torque=((0.0, 10.0), (1000.0, 8.0), (1500.0, 0.0)))
+    assert float(motor_moment(m, 500.0 * RPM / 2.0)) == pytest.approx(2.0 * 9.0, rel=1e-12)
+    assert float(motor_moment(m, 1600.0 * RPM / 2.0)) == pytest.approx(2.0 * -1.6, rel=1e-12)
+    assert no_load_speed(m) == pytest.approx(1500.0 * RPM / 2.0, rel=1e-15)
+
+
+def test_startup_conserves_energy(solved):
+    """No losses: at every sampled instant, T(t) − T(0) equals the motor's work plus the loads' —
+    T summed here from the links' velocities (a drive at 1 rad/s, scaled by ω²) and the flywheel,
+    the motor's work ∫M·ω dt by Simpson's rule on the dense solution with Kloss' formula written
+    here; to the integrator's tolerance (rtol 1e-10: 1e-7 of the work done)."""
+    scene, motion, machine, st = solved
+    mech, structure = motion.mechanism, motion.structure
+    motor = scene.dynamics.motor
+    rated = motor.power / (motor.rated_rpm * RPM)
+    s_r = 1 - motor.rated_rpm / motor.synchronous_rpm
+    s_k = s_r * (motor.breakdown + math.sqrt(motor.breakdown ** 2 - 1))
+
+    def kloss(w):
+        s = 1 - w * motor.ratio / (motor.synchronous_rpm * RPM)
+        return motor.ratio * 2 * motor.breakdown * rated / (s / s_k + s_k / s) if s != 0 else 0.0
+
+    def kinetic(theta, omega):
+        phi = machine.start + machine.sense * np.degrees(np.atleast_1d(theta))
+        m = analyse(mech, structure, phi, order=1)
+        w1 = mech.drive.speed
+        total = np.zeros(len(phi))
+        for link, mass in scene.masses.items():
+            v = m.velocity(mass.centre, link)
+            total += mass.mass * np.sum(v * v, axis=1) + mass.inertia * m.links[link].omega ** 2
+        i_r = total / w1 ** 2 + scene.dynamics.rotor_inertia + machine.J
+        return 0.5 * i_r * np.atleast_1d(omega) ** 2
+
+    checks = [len(st.t) // 4, len(st.t) // 2, len(st.t) - 1]
+    sol = st.solution
+    for k in checks:
+        t_k = st.t[k]
+        tt = np.linspace(0.0, t_k, 200001)
+        y = sol.sol(tt)
+        p = np.array([kloss(w) for w in y[1]]) * y[1]
+        h = tt[1] - tt[0]
+        w_motor = h / 3 * (p[0] + p[-1] + 4 * p[1:-1:2].sum() + 2 * p[2:-1:2].sum())
+        th = st.theta[k]
+        turns = math.floor(th / (2 * math.pi))
+        w_loads = turns * float(machine.work(2 * math.pi)) + float(machine.work(th - turns * 2 * math.pi))
+        gained = float(kinetic(th, st.omega[k])[0])
+        assert abs(gained - (w_motor + w_loads)) <= 1e-7 * w_motor, (t_k, gained, w_motor, w_loads)
+
+
+def test_steady_state_agrees_with_the_periodic_cycle_and_the_flywheel(solved):
+    """The last simulated revolution's ω_max, ω_min and δ are the periodic solution's (shot over
+    one revolution in φ, independently of the time integration) to 1e-6; its δ is the flywheel's
+    δ = 1/20 less what the motor's falling characteristic damps (a few per cent), and the mean
+    speed is the drive's ω within the motor's slip change (1 %)."""
+    scene, motion, machine, st = solved
+    hi, lo, d = st.last
+    q = st.steady
+    assert hi == pytest.approx(q.omega_max, rel=1e-6)
+    assert lo == pytest.approx(q.omega_min, rel=1e-6)
+    assert d == pytest.approx(q.delta, rel=1e-5)
+    assert q.delta == pytest.approx(machine.flywheel.delta, rel=0.05) and q.delta < machine.flywheel.delta
+    assert q.omega_mean == pytest.approx(abs(scene.drive.speed), rel=0.01)
+    assert 0.0 < st.time_to_steady < st.t_end
+
+
+def test_startup_sheet_checks_and_report():
+    out = render(EXAMPLES / f"{NAME}.toml")
+    assert f"{NAME}-startup.svg" in out.files and f"{NAME}-dynamics.svg" in out.files
+    data = out.report["cycle"]["dynamics"]["startup"]
+    assert data["solver"] == "DOP853" and data["rtol"] == 1e-10
+    assert len(data["t"]) == len(data["omega"]) == len(data["motor_moment"]) == len(data["load_moment"])
+    assert data["omega"][0] == 0.0 and data["t"][-1] == data["t_end"]
+    assert data["steady"]["difference"] < 0.05
+
+
+def test_startup_sheet_passes_plans_check(tmp_path):
+    out = render(EXAMPLES / f"{NAME}.toml")
+    path = tmp_path / "startup.svg"
+    path.write_text(out.files[f"{NAME}-startup.svg"], encoding="utf-8")
+    found = check_svg(path)
+    assert len(found) == 26 and all(m.ok for m in found)
+    data = out.report["cycle"]["dynamics"]["startup"]
+    by = {m.quantity: m.value for m in found}
+    assert by["w@12"] == pytest.approx(abs(data["omega"][-1]), rel=1e-12)
+
+
+def test_startup_runs_only_when_asked():
+    with record_stages() as stages:
+        render(EXAMPLES / "six_link_press_flywheel.toml")
+    assert "startup" not in stages
+    with record_stages() as stages:
+        render(EXAMPLES / f"{NAME}.toml")
+    assert stages.count("startup") == 1
+
+
+@pytest.mark.parametrize("old, new, words", [
+    ("power = 370.0", "power = 20.0", "cannot start the load"),
+    ("power = 370.0", "power = -1.0", "power"),
+    ("rated_rpm = 1370.0", "rated_rpm = 1600.0", "rated_rpm"),
+    ("breakdown = 2.2", "breakdown = 0.8", "breakdown"),
+    ("ratio = 18.4", "ratio = 0", "ratio"),
+    ("breakdown = 2.2  # M_max / M_rated\n", "", "breakdown is missing"),
+    ("power = 370.0", "torque = [[0, 5.0], [1500, 0.0]]\npower = 370.0", "one of the two"),
+    ('simulate = { t_end = 15.0, from = "rest" }', 'simulate = { t_end = 0.0 }', "t_end"),
+    ('simulate = { t_end = 15.0, from = "rest" }', 'simulate = { t_end = 5.0, from = "speed" }', "from"),
+    ("[motor]", "[motor_x]", "unknown"),
+])
+def test_bad_startup_input_is_one_line_and_exit_2(tmp_path, old, new, words):
+    text = (EXAMPLES / f"{NAME}.toml").read_text()
+    assert old in text
+    scene = tmp_path / "bad.toml"
+    scene.write_text(text.replace(old, new))
+    out = tmp_path / "out"
+    r = subprocess.run([sys.executable, "-m", "plans", "render", str(scene), "-o", str(out)], capture_output=True,
+                       text=True)
+    assert r.returncode == 2, r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and words in lines[0], r.stderr
+    assert not out.exists()
