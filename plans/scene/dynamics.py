@@ -98,7 +98,7 @@ def read_dynamics(table: Any, motor: Any = None) -> Dynamics:
     driving = table.get("driving", "constant")
     if driving not in DRIVINGS:
         raise SceneError(f"driving is {' or '.join(repr(d) for d in DRIVINGS)} (the moment on the crank constant "
-                         f"over the steady cycle, or the [motor]'s); got {SHOW.repr(driving)}", key="dynamics.driving")
+                         f"over the steady cycle; a [motor] is run by simulate); got {SHOW.repr(driving)}", key="dynamics.driving")
     engine = read_motor(motor) if motor is not None else None
     simulate = None
     if "simulate" in table:
