@@ -168,3 +168,72 @@ def test_bad_startup_input_is_one_line_and_exit_2(tmp_path, old, new, words):
     lines = r.stderr.strip().splitlines()
     assert len(lines) == 1 and words in lines[0], r.stderr
     assert not out.exists()
+
+
+# --- the positions at the true speed ([dynamics] true_speed) ----------------------------------------------
+
+def test_true_speed_forces_balance_the_constant_driving_moment():
+    """At the true ω1(φ), ε1(φ) the crank's balancing moment found group by group (and on the
+    lever) is the constant driving moment less the flywheel's and rotor's inertia torque:
+    M_b + (J + I_rotor)·ε1 = M_d at every position, to 1e-9 — the force analysis and the
+    dynamics meet without sharing a formula."""
+    data = render(EXAMPLES / f"{NAME}.toml").report
+    dyn = data["cycle"]["dynamics"]
+    md = dyn["constant_moment"]
+    j = dyn["flywheel"]["inertia_exact"] + dyn["rotor_inertia"]
+    eps = [p["links"]["1"]["epsilon"] for p in data["positions"]]
+    assert max(abs(e) for e in eps) > 0.1          # the true speed does vary
+    for p, e, w, w_true in zip(data["positions"], eps, [p["links"]["1"]["omega"] for p in data["positions"]],
+                               dyn["omega"]):
+        assert w == pytest.approx(w_true, rel=1e-12)
+        assert p["forces"]["balance"]["moment"] + j * e == pytest.approx(md, rel=1e-9)
+        if p["forces"]["lever"]:
+            assert p["forces"]["lever"]["moment"] + j * e == pytest.approx(md, rel=1e-9)
+
+
+def test_true_speed_motion_is_the_kinematics_solved_at_that_speed(solved):
+    """The rescaled motion (velocities ∝ ω1, accelerations ∝ (ε1, ω1²)) against the mechanism
+    solved afresh with its drive at each position's ω1, ε1: 1e-12 of the largest value."""
+    from dataclasses import replace
+
+    from plans.dynamics import at_true_speed
+    from plans.model import build_mechanism
+    from plans.structure import analyse_structure
+
+    scene, motion, machine, _ = solved
+    w = machine.sense * machine.omega(machine.theta)
+    e = machine.sense * machine.epsilon(machine.theta)
+    true = at_true_speed(motion, w, e)
+    mech = build_mechanism(scene)
+    structure = analyse_structure(mech)
+    for i in (0, 3, 7, 10):
+        fresh = analyse(replace(mech, drive=replace(mech.drive, speed=float(w[i]), rate=float(e[i]))), structure,
+                        np.array([motion.values[i]]), order=2)
+        for point in ("A", "B", "C", "E", "S4"):
+            v, a = true.velocity(point)[i], true.acceleration(point)[i]
+            assert np.allclose(v, fresh.velocity(point)[0], rtol=0, atol=1e-12 * np.max(np.abs(true.velocity(point))))
+            assert np.allclose(a, fresh.acceleration(point)[0], rtol=0,
+                               atol=1e-12 * np.max(np.abs(true.acceleration(point))))
+
+
+def test_true_speed_only_when_asked(tmp_path):
+    with record_stages() as stages:
+        render(EXAMPLES / "six_link_press_flywheel.toml")
+    assert "true_speed" not in stages
+    with record_stages() as stages:
+        render(EXAMPLES / f"{NAME}.toml")
+    assert stages.count("true_speed") == 1
+
+
+@pytest.mark.parametrize("old, new, words", [
+    ("true_speed = true", "true_speed = 1", "true or false"),
+    ('"positions", "dynamics"', '"positions", "diagrams", "dynamics"', "diagrams"),
+])
+def test_bad_true_speed_is_one_line(tmp_path, old, new, words):
+    text = (EXAMPLES / f"{NAME}.toml").read_text()
+    assert old in text
+    scene = tmp_path / "bad.toml"
+    scene.write_text(text.replace(old, new))
+    r = subprocess.run([sys.executable, "-m", "plans", "render", str(scene), "-o", str(tmp_path / "out")],
+                       capture_output=True, text=True)
+    assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1 and words in r.stderr, r.stderr

@@ -320,7 +320,7 @@ def _steps(motion, i, g, plan, segment, mu, pname, known, moving, drawn, resting
     py = vec[f"v:{y}"]
     if crank:
         l_oy = float(np.linalg.norm(motion.position(y)[i] - motion.position(o)[i]))
-        out.append(f"4) K_{{V}} = V_{{{y}}} / p{y.lower()} = ω_1·l_{{{o}{y}}} / p{y.lower()} = {abs(drive.speed):g} 1/s · "
+        out.append(f"4) K_{{V}} = V_{{{y}}} / p{y.lower()} = ω_1·l_{{{o}{y}}} / p{y.lower()} = {abs(motion.drive_rates(i)[0]):g} 1/s · "
                    f"{l_oy:.4g} m / {py.length:.2f} mm = {plan.mu:.4g} (m/s)/mm.")
     else:
         out.append(f"4) K_{{V}} = V_{{{y}}} / p{y.lower()} = {py.value:.4g} m/s / {py.length:.2f} mm = "

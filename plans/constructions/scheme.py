@@ -147,14 +147,15 @@ def scheme(motion: Motion, i: int, mu_l: float, *, senses: bool = False) -> Sche
         reference = (crank - phi + 180.0) % 360.0 - 180.0
         if abs(reference) < 1e-9:
             reference = 0.0
-        arcs = _drive_arcs(d, c, float(np.linalg.norm(tip - c)), crank, phi, reference)
+        arcs = _drive_arcs(d, motion.drive_rates(i), c, float(np.linalg.norm(tip - c)), crank, phi, reference)
     if d.kind == DriveKind.COUPLER:    # the given ω, ε of the driving coupler, on it
         arcs += _sense_arcs(motion, i, points, blocks, (d.link,))
     if senses:
         arcs += _sense_arcs(motion, i, points, blocks, tuple(n for n in mech.moving if n != d.link))
     return Scheme(mu_l=mu_l, points=points, links=links, joints=joints, supports=supports,
                   blocks=tuple(blocks), guides=tuple(guides),
-                  drive_pivot=d.pivot if d.kind == DriveKind.ROTARY else None, omega=d.speed, epsilon=d.rate,
+                  drive_pivot=d.pivot if d.kind == DriveKind.ROTARY else None, omega=motion.drive_rates(i)[0],
+                  epsilon=motion.drive_rates(i)[1],
                   phi=phi, reference=reference if reference is not None else 0.0, dots=dots, arcs=tuple(arcs))
 
 
@@ -233,8 +234,10 @@ def _guide(motion: Motion, i: int, mu_l: float, pr, offset: float, points) -> Gu
     return Guide(pr.guide, _xy(anchor + t0 * ui), _xy(anchor + t1 * ui), fixed, stem)
 
 
-def _drive_arcs(d, c: np.ndarray, length: float, crank: float, phi: float, reference: float) -> list[Arc]:
-    """φ1 from the reference direction to the crank; ω1 and ε1 (when not zero) across the crank."""
+def _drive_arcs(d, rates: tuple[float, float], c: np.ndarray, length: float, crank: float, phi: float,
+                reference: float) -> list[Arc]:
+    """φ1 from the reference direction to the crank; ω1 and ε1 (``rates``, when not zero) across
+    the crank."""
     centre = _xy(c)
     r_phi = min(max(0.3 * length, 6.0), 14.0)
     arcs = []
@@ -242,7 +245,7 @@ def _drive_arcs(d, c: np.ndarray, length: float, crank: float, phi: float, refer
     if abs(sweep) > 1e-9:
         arcs.append(Arc("phi", d.link, centre, r_phi, reference, sweep, "φ" + _sub(d.link)))
     r = r_phi + 4.5
-    for kind, value, sym in (("omega", d.speed, "ω"), ("epsilon", d.rate, "ε")):
+    for kind, value, sym in (("omega", rates[0], "ω"), ("epsilon", rates[1], "ε")):
         if value != 0.0:
             s = math.copysign(1.0, value)
             arcs.append(Arc(kind, d.link, centre, r, crank - s * ARROW_SWEEP / 2, s * ARROW_SWEEP,

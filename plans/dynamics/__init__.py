@@ -10,6 +10,7 @@ from .motor import motor_moment, no_load_speed
 from .piecewise import Piecewise
 from .reduced import Reduced, reduce
 from .startup import Startup, Steady, startup, steady_cycle
+from .true_speed import at_true_speed
 
 __all__ = ["Flywheel", "MachineDynamics", "machine_dynamics", "flywheel_for", "Piecewise", "Reduced", "reduce",
-           "Startup", "Steady", "startup", "steady_cycle", "motor_moment", "no_load_speed"]
+           "Startup", "Steady", "startup", "steady_cycle", "motor_moment", "no_load_speed", "at_true_speed"]

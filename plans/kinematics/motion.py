@@ -34,6 +34,17 @@ class Motion(Solution):
     and its cross-check ``triad_disagreement``) are computed once, when first read.
     """
 
+    def drive_rates(self, i: int) -> tuple[float, float]:
+        """The crank's ω1, ε1 (rad/s, rad/s², CCW) at position i: its state's, which differ from
+        position to position at the true speed of a machine (see
+        :func:`plans.dynamics.at_true_speed`); the given ω, ε for other drives or before they
+        are solved."""
+        d = self.mechanism.drive
+        s = self.links.get(d.link)
+        if not d.kind.angular or s is None or s.omega is None or d.kind.name != "ROTARY":
+            return float(d.speed), float(d.rate)
+        return float(s.omega[i]), float(s.epsilon[i]) if s.epsilon is not None else float(d.rate)
+
     @cached_property
     def special_points(self) -> dict[str, GroupPoints]:
         """Every class III group's axes and special points, with the velocities and accelerations

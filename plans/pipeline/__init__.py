@@ -37,7 +37,8 @@ from .sheets.page import Page
 from .sheets.plans import plan_sheets
 from .sheets.scheme import scheme_sheets
 from .sheets.dynamics import dynamics_sheets, dynamics_warnings
-from .stages import force_analysis, machine_motion, machine_startup, record_stages, solve_motion, solve_scene
+from .stages import (force_analysis, machine_motion, machine_startup, record_stages, solve_motion, solve_scene,
+                     true_speed_motion)
 
 __all__ = ["Rendered", "Sheet", "Sheets", "render", "render_scene", "report", "solve_scene", "record_stages",
            "stem_of", "at_rest", "read_scene", "LEVER_RTOL", "MAX_STEM_CHARS"]
@@ -76,10 +77,12 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
         scene = with_train(scene, train)
     try:
         motion, cycle = solve_motion(scene)
+        machine = machine_motion(scene, cycle)
+        if machine is not None and scene.dynamics.true_speed:
+            motion, cycle = true_speed_motion(scene, cycle, machine)
         rest = at_rest(motion)
         scales = scene_scales(scene, motion, rest)
         forces = force_analysis(scene, motion, cycle)
-        machine = machine_motion(scene, cycle)
         started = machine_startup(scene, machine)
     except PlansError as exc:
         raise exc.in_file(where) if where and hasattr(exc, "in_file") else exc

@@ -8,11 +8,12 @@ solve_cycle only. It imports nothing of the pipeline's sheets, report or API."""
 from __future__ import annotations
 
 import contextlib
+from dataclasses import replace
 from typing import Iterator
 
 import numpy as np
 
-from ..dynamics import MachineDynamics, Startup, machine_dynamics, startup
+from ..dynamics import MachineDynamics, Startup, at_true_speed, machine_dynamics, startup
 from ..errors import SceneError
 from ..kinematics import Motion, analyse
 from ..kinematics.cycle import Cycle, solve_cycle
@@ -61,6 +62,8 @@ def solve_motion(scene: Scene) -> tuple[Motion, Cycle | None]:
         1 if {"velocity", "centres", "velocities"} & set(scene.draw) else 0
     if scene.wants_forces:      # the power balance needs velocities, inertia accelerations
         order = max(order, 2 if scene.wants_inertia else 1)
+    if scene.dynamics is not None and scene.dynamics.true_speed:    # ε1 ≠ 0: accelerations at the true speed
+        order = 2
     _ran(*_ORDER_STAGES[:order + 1])
     c = scene.cycle
     if c is None:
@@ -103,6 +106,15 @@ def machine_motion(scene: Scene, cycle: Cycle | None) -> MachineDynamics | None:
         return None
     _ran("dynamics")
     return machine_dynamics(scene, cycle)
+
+
+def true_speed_motion(scene: Scene, cycle: Cycle, machine: MachineDynamics) -> tuple[Motion, Cycle]:
+    """The cycle's positions at the crank's true ω1(φ), ε1(φ) (``[dynamics] true_speed``)."""
+    _ran("true_speed")
+    w = machine.sense * machine.omega(machine.theta)
+    e = machine.sense * machine.epsilon(machine.theta)
+    motion = at_true_speed(cycle.motion, w, e)
+    return motion, replace(cycle, motion=motion)
 
 
 def machine_startup(scene: Scene, machine: MachineDynamics | None) -> Startup | None:

@@ -111,6 +111,9 @@ def _parse(data: Mapping[str, Any], file: str | None) -> Scene:
         if cycle is None:
             raise SceneError("[dynamics] finds the machine's motion over a steady cycle: add [drive] positions = N "
                              "(e.g. 12)", key="dynamics")
+        if dynamics.true_speed and "diagrams" in draw:
+            raise SceneError('true_speed re-solves the positions at the true ω1(φ); the kinematic diagrams are drawn '
+                             'against time at a constant ω1: draw one or the other', key="dynamics.true_speed")
         if drive.speed == 0.0 or drive.rate != 0.0:
             raise SceneError("[dynamics] starts from the crank turning at its mean speed: give omega ≠ 0 (the mean "
                              "ω_m) and epsilon = 0", key="drive.omega" if drive.speed == 0.0 else "drive.epsilon")

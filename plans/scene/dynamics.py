@@ -57,7 +57,8 @@ class Dynamics:
     inertia J (kg·m², the δ it keeps is found); ``rotor_inertia`` (kg·m²) the motor's and gears'
     inertia reduced to the crank, always turning with it; ``driving``: "constant", the moment on
     the crank constant over the steady cycle and equal to the mean of the loads' reduced moment;
-    ``motor`` the ``[motor]`` and ``simulate`` its start-up (needs the motor)."""
+    ``motor`` the ``[motor]`` and ``simulate`` its start-up (needs the motor); ``true_speed``:
+    the positions' kinematics and forces at the true ω1(φ), ε1(φ) instead of the constant ω1."""
 
     delta: float | None = None
     flywheel: float | None = None
@@ -65,6 +66,7 @@ class Dynamics:
     driving: str = "constant"
     motor: Motor | None = None
     simulate: Simulation | None = None
+    true_speed: bool = False
 
 
 def read_dynamics(table: Any, motor: Any = None) -> Dynamics:
@@ -73,7 +75,7 @@ def read_dynamics(table: Any, motor: Any = None) -> Dynamics:
     if not isinstance(table, Mapping):
         raise SceneError("[dynamics] must be a table: delta = 0.05 (the allowed coefficient of speed fluctuation)",
                          key="dynamics")
-    allowed = {"delta", "flywheel", "rotor_inertia", "driving", "simulate"}
+    allowed = {"delta", "flywheel", "rotor_inertia", "driving", "simulate", "true_speed"}
     extra = sorted(str(k) for k in set(table) - allowed)
     if extra:
         raise SceneError(f"unknown key {extra[0]!r}; [dynamics] has {', '.join(sorted(allowed))}",
@@ -105,8 +107,11 @@ def read_dynamics(table: Any, motor: Any = None) -> Dynamics:
         simulate = _read_simulation(table["simulate"])
         if engine is None:
             raise SceneError("simulate runs the start-up under the motor's moment: add [motor]", key="dynamics.simulate")
+    true_speed = table.get("true_speed", False)
+    if not isinstance(true_speed, bool):
+        raise SceneError(f"true_speed is true or false, got {SHOW.repr(true_speed)}", key="dynamics.true_speed")
     return Dynamics(delta=delta, flywheel=flywheel, rotor_inertia=rotor, driving=driving, motor=engine,
-                    simulate=simulate)
+                    simulate=simulate, true_speed=true_speed)
 
 
 def _read_simulation(table: Any) -> Simulation:

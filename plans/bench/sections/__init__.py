@@ -16,6 +16,7 @@ headline figures (``summary``) and charts. Nothing here prints or writes files.
    one call against each angle walked alone
 9. :func:`handout_time` (:mod:`.handout_time`) — a class set: time per variant, and for 999
 10. :func:`check_scale` (:mod:`.check_scale`) — plans check on hostile files: linear in vectors and nesting depth
+11. :func:`startup_tolerance` (:mod:`.startup_tolerance`) — the motor start-up's integrator tolerance → error, time
 
 What several sections share lives in :mod:`.common` (table, configuration, scenes, timing) and
 :mod:`.pylinkage_model` (a scene as a pylinkage Linkage). This package must not import
@@ -37,14 +38,15 @@ from .precision import drawing_precision
 from .rates import THROUGHPUT_TARGET, render_rate, throughput
 from .resolution import cycle_resolution
 from .solver import SOLVER_CASES, SolverCase, solver_tolerance
+from .startup_tolerance import startup_tolerance
 
 __all__ = ["handout_time", "check_scale", "Column", "Section", "Config", "FULL", "QUICK", "SECTIONS", "drawing_precision", "solver_tolerance",
            "cycle_resolution", "throughput", "render_rate", "peer_comparison", "THROUGHPUT_TARGET", "SolverCase",
            "SOLVER_CASES", "numba_comparison", "class_cost", "limited_walk", "NUMBA_TARGET", "AGREEMENT_TARGET",
-           "CLASS_COST_TARGET"]
+           "CLASS_COST_TARGET", "startup_tolerance"]
 
 #: Every section in the order ``plans bench`` runs and prints them.
 SECTIONS: tuple[Callable[[Config], Section], ...] = (drawing_precision, solver_tolerance, cycle_resolution,
                                                      throughput, render_rate, peer_comparison,
                                                      numba_comparison, class_cost, limited_walk, handout_time,
-                                                     check_scale)
+                                                     check_scale, startup_tolerance)

@@ -83,6 +83,8 @@ class Config:
     class_large_positions: int                 # … and the same at this many positions, for comparison
     limited_positions: int                     # a crank that cannot turn fully, angles on both sides of the sketch
     limited_alone: int                         # … each angle walked alone, timed on this many of them
+    startup_tolerances: tuple[float, ...] = (1e-4, 1e-6, 1e-8, 1e-10, 1e-12)   # the start-up's DOP853 rtol
+    startup_t_end: float = 15.0                # seconds of the start-up simulated
 
 
 FULL = Config("full", precision_scenes=(), decimals=(1, 2, 3, 4, 5, 6),
@@ -95,7 +97,7 @@ QUICK = Config("quick", precision_scenes=("crank_slider_central",), decimals=(2,
                solver_positions=36, resolutions=(12, 36, 360), throughput_positions=360, loop_positions=12,
                batch_sizes=(10, 360), render_scenes=("crank_slider_central",), render_repeat=1, peer_positions=36,
                repeat=1, numba_positions=(36, 360), class_positions=72, class_large_positions=360,
-               limited_positions=36, limited_alone=6)
+               limited_positions=36, limited_alone=6, startup_tolerances=(1e-5, 1e-9), startup_t_end=2.0)
 
 
 def example_path(stem: str) -> Path:

@@ -22,11 +22,13 @@ from ...scene import Scene
 __all__ = ["dynamics_sheets", "dynamics_warnings", "balance_from_dynamics"]
 
 
-def balance_from_dynamics(machine: MachineDynamics, omega1: float) -> np.ndarray:
-    """The balancing moment (N·m, CCW) the reduced quantities give at the cycle's positions at a
-    constant ω1 (ε1 = 0): M_b = −M_r + I_r·ε1 + ½·(dI_r/dφ)·ω1²."""
+def balance_from_dynamics(machine: MachineDynamics, omega1: np.ndarray | float,
+                          epsilon1: np.ndarray | float = 0.0) -> np.ndarray:
+    """The balancing moment (N·m, CCW) the reduced quantities give at the cycle's positions with
+    the crank's ω1, ε1 there (CCW): M_b = −M_r + I_r·ε1 + ½·(dI_r/dφ)·ω1² (I_r of the links
+    alone: the rotor and flywheel are not in the force analysis)."""
     at = machine.at
-    return -at.moment + 0.5 * at.slope * omega1 ** 2
+    return -at.moment + at.inertia * epsilon1 + 0.5 * at.slope * np.asarray(omega1) ** 2
 
 
 def dynamics_sheets(scene: Scene, machine: MachineDynamics, forces: Forces | None, levers: Mapping[int, Lever],
@@ -54,15 +56,21 @@ def dynamics_sheets(scene: Scene, machine: MachineDynamics, forces: Forces | Non
         "omega": [float(x) for x in s * machine.omega(th)],
         "epsilon": [float(x) for x in s * machine.epsilon(th)],
     }
-    w1 = s * machine.omega_m
+    if scene.dynamics.true_speed:
+        w1, e1 = s * machine.omega(th), s * machine.epsilon(th)
+    else:
+        w1, e1 = s * machine.omega_m, 0.0
     if forces is not None and forces.balance.kind == "moment":
-        mb = balance_from_dynamics(machine, w1)
+        mb = balance_from_dynamics(machine, w1, e1)
         groups = forces.balance.value
         ref = np.maximum(np.abs(groups), 1e-300)
         data["balance_check"] = {
             "from_reduced": [float(x) for x in mb], "groups": [float(x) for x in groups],
             "lever": {str(i): float(lv.result) for i, lv in sorted(levers.items())},
             "max_relative_difference": float(np.max(np.abs(mb - groups) / np.maximum(ref, np.max(np.abs(groups)))))}
+        if scene.dynamics.true_speed:   # the crank's moment less the flywheel's and rotor's inertia: M_d − (J + I_rotor)·ε1
+            data["balance_check"]["driving_moment"] = [
+                float(x) for x in groups + (machine.J + machine.rotor) * np.asarray(e1) * np.ones(len(groups))]
     files: dict[str, str] = {}
     if "dynamics" in scene.draw:
         d = dynamics_diagrams(machine)

@@ -56,5 +56,6 @@ def position_label(motion: Motion, i: int) -> str:
     v = motion.values[i]
     d = motion.mechanism.drive
     j = d.link
-    return f"φ_{j} = {v:g}°, ω_{j} = {d.speed:g} rad/s, ε_{j} = {d.rate:g} rad/s²" if d.kind.angular else \
+    w, e = motion.drive_rates(i)
+    return f"φ_{j} = {v:g}°, ω_{j} = {w:g} rad/s, ε_{j} = {e:g} rad/s²" if d.kind.angular else \
         f"s = {v:g} m, v = {d.speed:g} m/s, a = {d.rate:g} m/s²"
