@@ -76,3 +76,20 @@ def press_without_cycle(folder: Path) -> Path:
     path = Path(folder) / "six_link_press.toml"
     path.write_text(toml_text(data), encoding="utf-8")
     return path
+
+
+def refused_line(tmp_path: Path, scene_text: str) -> str:
+    """Render ``scene_text`` through the command line; it must be refused — exit 2, one line on
+    stderr, no output folder — and that line is returned."""
+    import subprocess
+    import sys
+
+    scene = tmp_path / "bad.toml"
+    scene.write_text(scene_text, encoding="utf-8")
+    out = tmp_path / "out"
+    r = subprocess.run([sys.executable, "-m", "plans", "render", str(scene), "-o", str(out)], capture_output=True,
+                       text=True)
+    lines = r.stderr.strip().splitlines()
+    assert r.returncode == 2 and len(lines) == 1, r.stderr
+    assert not out.exists()
+    return lines[0]
