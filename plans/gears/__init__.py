@@ -13,12 +13,14 @@ from dataclasses import dataclass
 from ..scene import Scene
 from ..scene.gears import GearTrain
 from .geometry import TrainGeometry, assembly_number, train_geometry
+from .involute import GearPair, gear_pair, inv, inv_inverse, min_shift
 from .speeds import TrainSpeeds, Willis, carrier_ratio, central_links, exact, solve_train, tabular
 from .train import GearLink, Mesh, TrainStructure, train_structure
 
 __all__ = ["GearAnalysis", "analyse_train", "with_train", "TrainSpeeds", "TrainStructure", "TrainGeometry",
            "GearLink", "Mesh", "Willis", "solve_train", "train_structure", "train_geometry", "tabular",
-           "carrier_ratio", "central_links", "assembly_number", "exact"]
+           "carrier_ratio", "central_links", "assembly_number", "exact", "GearPair", "gear_pair", "inv", "inv_inverse",
+           "min_shift"]
 
 
 @dataclass(frozen=True)
