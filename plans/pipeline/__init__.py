@@ -20,6 +20,7 @@ from pathlib import Path
 from ..drawing import Style
 from ..errors import PlansError
 from ..gears import GearAnalysis, analyse_train, with_train
+from ..gears.pair import analyse_pair
 from ..gears.report import gears_report, synthesis_report, synthesize_scene
 from ..scene import Scene, read_scene
 from .json_report import report, report_text
@@ -37,6 +38,7 @@ from .sheets.page import Page
 from .sheets.plans import plan_sheets
 from .sheets.scheme import scheme_sheets
 from .sheets.dynamics import dynamics_sheets, dynamics_warnings
+from .sheets.gear_pair import pair_report, pair_sheets
 from .stages import (force_analysis, machine_motion, machine_startup, record_stages, solve_motion, solve_scene,
                      true_speed_motion)
 
@@ -73,8 +75,10 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
         except PlansError as exc:
             raise exc.in_file(where) if where and hasattr(exc, "in_file") else exc
         if scene.train_only:
-            return _render_train(scene, train, stem=stem, style=style, found=found)
+            return _render_train(scene, train, stem=stem, style=style, found=found, where=where)
         scene = with_train(scene, train)
+    elif scene.train_only:            # a gear pair alone
+        return _render_train(scene, None, stem=stem, style=style, where=where)
     try:
         motion, cycle = solve_motion(scene)
         machine = machine_motion(scene, cycle)
@@ -119,16 +123,28 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
     return Rendered(stem, files, motion, scales, tuple(warnings), forces, train)
 
 
-def _render_train(scene: Scene, train: GearAnalysis, *, stem: str, style: Style, found=None) -> Rendered:
-    """The files of a gear train alone: its sheet (when drawn) and the report (with the candidates
-    of ``[synthesis]``, the first drawn)."""
-    files = gear_sheets(scene, train, stem, style)
-    data = {"title": scene.title, "gears": gears_report(train)}
+def _render_train(scene: Scene, train: GearAnalysis | None, *, stem: str, style: Style, found=None,
+                  where: str | None = None) -> Rendered:
+    """The files of gears alone: the train's sheet (when drawn) and report (with the candidates
+    of ``[synthesis]``, the first drawn), and the involute pair's (``[gear_pair]``)."""
+    files = gear_sheets(scene, train, stem, style) if train is not None else {}
+    data: dict = {"title": scene.title}
+    warnings = list(train.warnings) if train is not None else []
+    if train is not None:
+        data["gears"] = gears_report(train)
     if found is not None:
         data["synthesis"] = synthesis_report(scene.synthesis, found)
+    if scene.gear_pair is not None:
+        try:
+            pair = analyse_pair(scene.gear_pair, scene.gears, meshing="meshing" in scene.draw or not scene.draw)
+        except PlansError as exc:
+            raise exc.in_file(where) if where and hasattr(exc, "in_file") else exc
+        data["gear_pair"] = pair_report(pair)
+        files.update(pair_sheets(scene, pair, stem, style))
+        warnings += pair.warnings
     files[f"{stem}.json"] = report_text(data)
-    where = scene.file or f"scene {scene.title!r}"
-    return Rendered(stem, files, None, None, tuple(f"{where}: {w}" for w in train.warnings), None, train)
+    at = scene.file or f"scene {scene.title!r}"
+    return Rendered(stem, files, None, None, tuple(f"{at}: {w}" for w in warnings), None, train)
 
 
 def render(scene: Scene | str | os.PathLike, *, style: Style = Style(), stem: str | None = None) -> Sheets:

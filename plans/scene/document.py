@@ -13,6 +13,7 @@ from ..errors import SceneError
 from .checks import SHOW, subtable, text
 from .drive import read_drive
 from .dynamics import read_dynamics
+from .gear_pair import read_gear_pair
 from .gears import read_gears, read_synthesis
 from .loads import read_balance, read_forces, read_gravity, read_masses, read_moments
 from .options import read_cycle, read_draw
@@ -22,9 +23,11 @@ from .gears import GearTrain
 from .values import MAX_TITLE_CHARS, Scene
 
 _TOP_KEYS = {"title", "description", "points", "links", "sliders", "drive", "lengths", "plans", "scales",
-             "masses", "forces", "moments", "gravity", "balance", "gears", "synthesis", "dynamics", "motor"}
+             "masses", "forces", "moments", "gravity", "balance", "gears", "synthesis", "dynamics", "motor", "gear_pair"}
 #: The keys of a scene that is a gear train alone (no [points], [links], [drive]).
-_TRAIN_KEYS = {"title", "description", "plans", "scales", "gears", "synthesis"}
+_TRAIN_KEYS = {"title", "description", "plans", "scales", "gears", "synthesis", "gear_pair"}
+#: What a scene of gears alone draws: the train's sheet, the pair in mesh and its cutting.
+_GEAR_SHEETS = ("gears", "meshing", "cutting")
 
 
 def parse_scene(data: Mapping[str, Any], *, file: str | None = None) -> Scene:
@@ -56,8 +59,11 @@ def _parse(data: Mapping[str, Any], file: str | None) -> Scene:
                              "linkage (put the found train into a scene of its own)", key="synthesis")
         return _train_only(data, title, description, None, file)
     gears = read_gears(data["gears"]) if "gears" in data else None
-    if gears is not None and not {"points", "links", "drive"} & set(data):
+    if (gears is not None or "gear_pair" in data) and not {"points", "links", "drive"} & set(data):
         return _train_only(data, title, description, gears, file)
+    if "gear_pair" in data:
+        raise SceneError("[gear_pair] is drawn in a scene of gears alone (with or without [gears]); put it in a scene "
+                         "without [points], [links], [drive]", key="gear_pair")
     if gears is not None and gears.output is None:
         raise SceneError("a scene with a gear train and a linkage names the wheel or carrier on the crank's shaft: "
                          "[gears] output = \"NAME\" (or put the train in a scene of its own)", key="gears.output")
@@ -125,8 +131,8 @@ def _parse(data: Mapping[str, Any], file: str | None) -> Scene:
 
 def _train_only(data: Mapping[str, Any], title: str, description: str, gears: GearTrain | None,
                 file: str | None) -> Scene:
-    """A scene that is a gear train alone: [gears] (or [synthesis], which finds it) with title,
-    description, [plans] draw, [scales]."""
+    """A scene of gears alone: [gears] (or [synthesis], which finds it) and/or [gear_pair], with
+    title, description, [plans] draw, [scales]."""
     extra = sorted(str(k) for k in set(data) - _TRAIN_KEYS)
     if extra:
         raise SceneError(f"[{extra[0]}] belongs to a linkage, but this scene has no [points], [links], [drive]; "
@@ -138,11 +144,20 @@ def _train_only(data: Mapping[str, Any], title: str, description: str, gears: Ge
     extra = sorted(str(k) for k in set(plans_table) - {"draw"})
     if extra:
         raise SceneError(f"a gear train's [plans] has only draw, not {extra[0]!r}", key=f"plans.{extra[0]}")
-    draw = plans_table.get("draw", ["gears"])
-    if draw not in (["gears"], []):
-        raise SceneError(f"a gear train draws [\"gears\"] (its sheet) or [] (the report alone), got "
-                         f"{SHOW.repr(draw)}", key="plans.draw")
+    pair = read_gear_pair(data["gear_pair"]) if "gear_pair" in data else None
+    default = (["gears"] if gears is not None or "synthesis" in data else []) + \
+        (["meshing", "cutting"] if pair is not None else [])
+    draw = plans_table.get("draw", default)
+    if not isinstance(draw, list) or any(d not in _GEAR_SHEETS for d in draw):
+        raise SceneError(f"a scene of gears alone draws {', '.join(repr(d) for d in _GEAR_SHEETS)} or [] (the report "
+                         f"alone), got {SHOW.repr(draw)}", key="plans.draw")
+    if "gears" in draw and gears is None and "synthesis" not in data:
+        raise SceneError('"gears" draws a gear train, and the scene has no [gears]; remove it from draw',
+                         key="plans.draw")
+    if pair is None and ({"meshing", "cutting"} & set(draw)):
+        raise SceneError('"meshing" and "cutting" draw an involute pair: add [gear_pair]', key="plans.draw")
     synthesis = read_synthesis(data["synthesis"]) if "synthesis" in data else None
-    return Scene(title=title or "Gear train", points={}, links={}, sliders=(), drive=None, draw=tuple(draw),
+    return Scene(title=title or ("Gear train" if pair is None or gears is not None else "Gear pair"), points={},
+                 links={}, sliders=(), drive=None, draw=tuple(dict.fromkeys(draw)),
                  scales=read_scales(subtable(data, "scales")), description=description, file=file, gears=gears,
-                 synthesis=synthesis)
+                 synthesis=synthesis, gear_pair=pair)

@@ -14,13 +14,14 @@ from enum import StrEnum
 from typing import Mapping
 
 from .dynamics import Dynamics
+from .gear_pair import GearPairSpec
 from .gears import GearTrain, Synthesis
 
 #: The frame's name in [links] (a link name, a string).
 FRAME = "0"
 #: The sheets a scene may draw (``[plans] draw``), in the order they are drawn.
 DRAWABLE = ("scheme", "velocity", "acceleration", "centres", "positions", "diagrams", "velocities", "forces", "lever",
-            "gears", "dynamics", "startup")
+            "gears", "dynamics", "startup", "meshing", "cutting")
 #: What needs the force analysis (kinetostatics): the force plans and Zhukovsky's lever.
 FORCE_SHEETS = ("forces", "lever")
 #: Sheets of the whole cycle: they need ``[drive] positions = N``.
@@ -275,6 +276,7 @@ class Scene:
     gears: GearTrain | None = None  # [gears]: a train alone (no points, links, drive=None) or driving the crank
     synthesis: Synthesis | None = None  # [synthesis]: a planetary train to find (then gears is None)
     dynamics: Dynamics | None = None    # [dynamics]: the machine's motion under its loads (needs the cycle)
+    gear_pair: GearPairSpec | None = None   # [gear_pair]: one involute pair in mesh (a scene of gears alone)
 
     @property
     def train_only(self) -> bool:

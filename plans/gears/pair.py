@@ -1,0 +1,158 @@
+"""One involute pair of a scene (``[gear_pair]``): its shifts by the scene's rule, its geometry
+(:mod:`.involute`) and the checks a designer makes — refused in one line where the pair cannot
+work, warned where it works poorly:
+
+- a pointed tip (s_a ≤ 0) is refused; s_a < 0.25·m warns;
+- ε_α < 1 is refused; ε_α < 1.2 warns;
+- interference (a tip circle reaching past the other wheel's tangency point N) is refused
+  (a warning when only the cutting is drawn: the wheels are not put in mesh);
+- undercut (x < x_min) warns.
+
+Shift rules: "none" (x = 0); "no_undercut": x_i = max(x_min,i, 0), the smallest shifts that are
+not negative and avoid undercut; "balanced": x1 = −x2 (the centre distance stays m(z1 + z2)/2),
+chosen so that the specific sliding at the two ends of the active line is equal (ϑ1 at B2 =
+ϑ2 at B1), within the bounds that keep both wheels free of undercut.
+
+Imports only plans.errors, plans.scene and plans.gears (and the standard library).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from ..errors import SceneError
+from ..scene.gear_pair import GearPairSpec
+from ..scene.gears import GearTrain
+from .involute import GearPair, gear_pair, min_shift
+
+__all__ = ["PairAnalysis", "analyse_pair", "THIN_TIP", "LOW_CONTACT_RATIO"]
+
+#: A tip thinner than this many modules warns.
+THIN_TIP = 0.25
+#: A contact ratio under this warns (under 1 the pair cannot mesh continuously: refused).
+LOW_CONTACT_RATIO = 1.2
+
+
+@dataclass(frozen=True)
+class PairAnalysis:
+    """The pair (:class:`~plans.gears.involute.GearPair`), the rule that gave its shifts
+    ("given", "none", "no_undercut", "balanced"), the cutter's tip radius ρ (mm), the wheels'
+    names (from a train's mesh, else "1", "2") and one-line ``warnings``."""
+
+    pair: GearPair
+    rule: str
+    tip_radius: float
+    names: tuple[str, str]
+    warnings: tuple[str, ...]
+
+
+def _build(spec: GearPairSpec, z1: int, z2: int, m: float, x1: float, x2: float) -> GearPair:
+    return gear_pair(z1, z2, m, x1=x1, x2=x2, pressure_angle_deg=spec.pressure_angle, addendum=spec.addendum,
+                     clearance=spec.clearance)
+
+
+def _balanced(spec: GearPairSpec, z1: int, z2: int, m: float) -> tuple[float, float]:
+    """x1 = −x2 with equal specific sliding at the ends of the active line (bisection; the
+    difference ϑ1 − ϑ2 grows with x1), kept where neither wheel is undercut."""
+    alpha = math.radians(spec.pressure_angle)
+    lo, hi = min_shift(z1, alpha, spec.addendum), -min_shift(z2, alpha, spec.addendum)
+    if lo > hi:
+        return lo, -lo
+    lo, hi = max(lo, -1.0), min(hi, 1.0)
+
+    def f(x: float) -> float:
+        s = _build(spec, z1, z2, m, x, -x).sliding
+        return s[0] - s[1]
+
+    f_lo, f_hi = f(lo), f(hi)
+    if f_lo >= 0.0 or f_hi <= 0.0:           # balance lies beyond the undercut bounds: the nearer bound
+        x = lo if abs(f_lo) <= abs(f_hi) else hi
+        return x, -x
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if f(mid) < 0.0:
+            lo = mid
+        else:
+            hi = mid
+        if hi - lo <= 1e-15:
+            break
+    x = 0.5 * (lo + hi)
+    return x, -x
+
+
+def analyse_pair(spec: GearPairSpec, gears: GearTrain | None = None, *, meshing: bool = True) -> PairAnalysis:
+    """The pair of ``spec`` (its wheels from ``gears`` when it names a mesh), checked; with
+    ``meshing`` False (only the cutting of wheel 1 is drawn) interference and a contact ratio
+    under 1 are warnings, not refusals: the wheels are not put in mesh."""
+    names = ("1", "2")
+    if spec.mesh is not None:
+        if gears is None:
+            raise SceneError("mesh names two wheels of [gears], and the scene has no [gears]", key="gear_pair.mesh")
+        wheels = []
+        for name in spec.mesh:
+            try:
+                wheels.append(gears.wheel(name))
+            except KeyError:
+                raise SceneError(f"mesh names wheel {name!r}, which is not in [gears.wheels]",
+                                 key="gear_pair.mesh") from None
+        a, b = wheels
+        if tuple(spec.mesh) not in gears.meshes and tuple(reversed(spec.mesh)) not in gears.meshes:
+            raise SceneError(f"wheels {a.name} and {b.name} are not in mesh in [gears] meshes", key="gear_pair.mesh")
+        if a.internal or b.internal:
+            raise SceneError(f"the pair is an external one; {a.name if a.internal else b.name} is a ring gear",
+                             key="gear_pair.mesh")
+        if a.module is None or b.module is None:
+            raise SceneError(f"wheels {a.name} and {b.name} need a module in [gears.wheels] to be drawn in mesh",
+                             key="gear_pair.mesh")
+        if a.teeth > b.teeth:
+            a, b = b, a                      # the pinion first
+        z1, z2, m, names = a.teeth, b.teeth, a.module, (a.name, b.name)
+    else:
+        z1, z2, m = spec.z1, spec.z2, spec.module
+    alpha = math.radians(spec.pressure_angle)
+    if spec.x1 is not None:
+        rule, (x1, x2) = "given", (spec.x1, spec.x2)
+    elif spec.shift == "no_undercut":
+        rule, (x1, x2) = spec.shift, (max(min_shift(z1, alpha, spec.addendum), 0.0),
+                                      max(min_shift(z2, alpha, spec.addendum), 0.0))
+    elif spec.shift == "balanced":
+        rule, (x1, x2) = spec.shift, _balanced(spec, z1, z2, m)
+    else:
+        rule, (x1, x2) = "none", (0.0, 0.0)
+    if x1 + x2 <= -(z1 + z2) / (2.0 * math.tan(alpha)) * (math.tan(alpha) - alpha):
+        raise SceneError(f"x1 + x2 = {x1 + x2:g} is too negative for {z1} + {z2} teeth: the working pressure angle "
+                         "would be 0 or less", key="gear_pair.x1")
+    p = _build(spec, z1, z2, m, x1, x2)
+    warnings: list[str] = []
+    for k in range(2):
+        w = names[k]
+        if p.sa[k] <= 0.0:
+            raise SceneError(f"the tip of wheel {w} ({p.z[k]} teeth, x = {p.x[k]:.4g}) is pointed: s_a = "
+                             f"{p.sa[k]:.4g} mm ≤ 0; give a smaller shift", key=f"gear_pair.x{k + 1}")
+        if p.sa[k] < THIN_TIP * m:
+            warnings.append(f"the tip of wheel {w} is thin: s_a = {p.sa[k]:.4g} mm < {THIN_TIP:g}·m = "
+                            f"{THIN_TIP * m:.4g} mm")
+    g = [math.sqrt(max((da / 2) ** 2 - (db / 2) ** 2, 0.0)) for da, db in zip(p.da, p.db)]
+    for k in range(2):
+        if g[k] > p.line * (1 + 1e-12):
+            other = names[1 - k]
+            text = (f"interference: the tip circle of wheel {names[k]} (d_a = {p.da[k]:.4g} mm) reaches past "
+                             f"the tangency point N of wheel {other} on the line of action ({g[k]:.4g} mm from its "
+                             f"own N, the line N1N2 is {p.line:.4g} mm): wheel {other} needs a larger shift")
+            if meshing:
+                raise SceneError(text, key="gear_pair")
+            warnings.append(text)
+    if p.contact_ratio < 1.0:
+        text = (f"the contact ratio ε_α = {p.contact_ratio:.4g} is under 1: the pair does not mesh continuously; "
+                "give more teeth or smaller shifts")
+        if meshing:
+            raise SceneError(text, key="gear_pair")
+        warnings.append(text)
+    if p.contact_ratio < LOW_CONTACT_RATIO:
+        warnings.append(f"the contact ratio ε_α = {p.contact_ratio:.4g} is under {LOW_CONTACT_RATIO:g}")
+    for k in range(2):
+        if p.undercut[k]:
+            warnings.append(f"wheel {names[k]} ({p.z[k]} teeth, x = {p.x[k]:.4g}) is undercut: x < x_min = "
+                            f"{p.x_min[k]:.4g}")
+    return PairAnalysis(pair=p, rule=rule, tip_radius=spec.tip_radius * m, names=names, warnings=tuple(warnings))

@@ -1,0 +1,113 @@
+"""The involute pair of a scene (``[gear_pair]``): the teeth, module and basic rack of one external
+spur pair and its profile shifts (numbers, or a rule); or a mesh of the scene's gear train.
+
+Imports only plans.errors and plans.scene.checks (and the standard library).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, Mapping
+
+from ..errors import SceneError
+from .checks import SHOW, number
+
+__all__ = ["GearPairSpec", "read_gear_pair", "SHIFTS", "MAX_PAIR_TEETH"]
+
+#: The rules for the shifts when x1, x2 are not given.
+SHIFTS = ("none", "no_undercut", "balanced")
+#: Teeth of a wheel of the pair: the generation is drawn tooth by tooth.
+MIN_PAIR_TEETH, MAX_PAIR_TEETH = 5, 500
+_KEYS = {"z1", "z2", "module", "pressure_angle", "addendum", "clearance", "x1", "x2", "shift", "tip_radius", "mesh"}
+
+
+@dataclass(frozen=True)
+class GearPairSpec:
+    """``[gear_pair]``: teeth ``z1`` (the pinion) and ``z2``, ``module`` m (mm), the basic rack
+    (``pressure_angle`` α in degrees, ``addendum`` ha*, ``clearance`` c*, ``tip_radius`` ρ of the
+    cutter's tip rounding in modules), and the shifts ``x1``, ``x2`` or the ``shift`` rule
+    ("none"; "no_undercut": the smallest shifts, 0 or more, that avoid undercut; "balanced":
+    x1 = −x2, equal specific sliding at the two ends of the active line). ``mesh`` names two
+    wheels of ``[gears]`` instead of z1, z2, module."""
+
+    z1: int | None = None
+    z2: int | None = None
+    module: float | None = None
+    pressure_angle: float = 20.0
+    addendum: float = 1.0
+    clearance: float = 0.25
+    x1: float | None = None
+    x2: float | None = None
+    shift: str | None = None
+    tip_radius: float = 0.38
+    mesh: tuple[str, str] | None = None
+
+
+def _teeth(value: Any, key: str) -> int:
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise SceneError(f"teeth are a whole number, got {SHOW.repr(value)}", key=key)
+    if not MIN_PAIR_TEETH <= value <= MAX_PAIR_TEETH:
+        raise SceneError(f"a wheel of the pair has {MIN_PAIR_TEETH} … {MAX_PAIR_TEETH} teeth, got {value}", key=key)
+    return value
+
+
+def read_gear_pair(table: Any) -> GearPairSpec:
+    """``[gear_pair]`` (see :class:`GearPairSpec`), its numbers checked."""
+    if not isinstance(table, Mapping):
+        raise SceneError("[gear_pair] must be a table: z1 = 12, z2 = 30, module = 4.0", key="gear_pair")
+    extra = sorted(str(k) for k in set(table) - _KEYS)
+    if extra:
+        raise SceneError(f"unknown key {extra[0]!r}; [gear_pair] has {', '.join(sorted(_KEYS))}",
+                         key=f"gear_pair.{extra[0]}")
+    mesh = None
+    if "mesh" in table:
+        m = table["mesh"]
+        if not (isinstance(m, list) and len(m) == 2 and all(isinstance(w, str) for w in m)) or m[0] == m[1]:
+            raise SceneError(f'mesh names two wheels of [gears]: mesh = ["a", "g"], got {SHOW.repr(m)}',
+                             key="gear_pair.mesh")
+        clash = sorted({"z1", "z2", "module"} & set(table))
+        if clash:
+            raise SceneError(f"mesh takes the teeth and the module from [gears]; remove {clash[0]}",
+                             key=f"gear_pair.{clash[0]}")
+        mesh = (m[0], m[1])
+    else:
+        missing = [k for k in ("z1", "z2", "module") if k not in table]
+        if missing:
+            raise SceneError(f"[gear_pair] needs z1, z2 and module (or mesh = [\"a\", \"g\"]): {missing[0]} is missing",
+                             key=f"gear_pair.{missing[0]}")
+    z1 = _teeth(table["z1"], "gear_pair.z1") if "z1" in table else None
+    z2 = _teeth(table["z2"], "gear_pair.z2") if "z2" in table else None
+    module = None
+    if "module" in table:
+        module = number(table["module"], "gear_pair.module", bound=1e3, why=" mm")
+        if not module >= 0.05:
+            raise SceneError(f"the module is 0.05 mm or more, got {module:g}", key="gear_pair.module")
+    alpha = number(table.get("pressure_angle", 20.0), "gear_pair.pressure_angle", bound=90.0, why="°")
+    if not 10.0 <= alpha <= 35.0:
+        raise SceneError(f"pressure_angle is 10° … 35° (20° standard), got {alpha:g}", key="gear_pair.pressure_angle")
+    ha = number(table.get("addendum", 1.0), "gear_pair.addendum", bound=10.0)
+    if not 0.5 <= ha <= 1.5:
+        raise SceneError(f"addendum ha* is 0.5 … 1.5 (1 standard), got {ha:g}", key="gear_pair.addendum")
+    c = number(table.get("clearance", 0.25), "gear_pair.clearance", bound=10.0)
+    if not 0.0 <= c <= 0.5:
+        raise SceneError(f"clearance c* is 0 … 0.5 (0.25 standard), got {c:g}", key="gear_pair.clearance")
+    rho = number(table.get("tip_radius", 0.38), "gear_pair.tip_radius", bound=10.0)
+    largest = c / (1.0 - math.sin(math.radians(alpha)))     # the rounding fills the tip corner (0.38 standard)
+    if not 0.0 <= rho <= round(largest, 2) + 1e-12:
+        raise SceneError(f"tip_radius ρ* (in modules) is 0 … c*/(1 − sin α) = {largest:.4g} (the rounding must fit "
+                         f"the cutter's tip corner), got {rho:g}", key="gear_pair.tip_radius")
+    rho = min(rho, largest)
+    has_x = "x1" in table or "x2" in table
+    if has_x and "shift" in table:
+        raise SceneError("give the shifts x1, x2 or a shift rule, not both", key="gear_pair.shift")
+    x1 = number(table.get("x1", 0.0), "gear_pair.x1", bound=3.0) if has_x else None
+    x2 = number(table.get("x2", 0.0), "gear_pair.x2", bound=3.0) if has_x else None
+    shift = None
+    if not has_x:
+        shift = table.get("shift", "none")
+        if shift not in SHIFTS:
+            raise SceneError(f"shift is {', '.join(repr(s) for s in SHIFTS)}, got {SHOW.repr(shift)}",
+                             key="gear_pair.shift")
+    return GearPairSpec(z1=z1, z2=z2, module=module, pressure_angle=alpha, addendum=ha, clearance=c, x1=x1, x2=x2,
+                        shift=shift, tip_radius=rho, mesh=mesh)
