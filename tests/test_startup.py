@@ -153,6 +153,7 @@ def test_startup_runs_only_when_asked():
     ('simulate = { t_end = 15.0, from = "rest" }', 'simulate = { t_end = 0.0 }', "t_end"),
     ('simulate = { t_end = 15.0, from = "rest" }', 'simulate = { t_end = 5.0, from = "speed" }', "from"),
     ("[motor]", "[motor_x]", "unknown"),
+    ('simulate = { t_end = 15.0, from = "rest" }', "", "add simulate"),
 ])
 def test_bad_startup_input_is_one_line_and_exit_2(tmp_path, old, new, words):
     text = (EXAMPLES / f"{NAME}.toml").read_text()

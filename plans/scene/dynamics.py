@@ -107,6 +107,9 @@ def read_dynamics(table: Any, motor: Any = None) -> Dynamics:
         simulate = _read_simulation(table["simulate"])
         if engine is None:
             raise SceneError("simulate runs the start-up under the motor's moment: add [motor]", key="dynamics.simulate")
+    elif engine is not None:
+        raise SceneError('[motor] drives the start-up: add simulate = { t_end = 10.0 } to [dynamics] (the steady '
+                         "cycle is found with a constant driving moment)", key="motor")
     true_speed = table.get("true_speed", False)
     if not isinstance(true_speed, bool):
         raise SceneError(f"true_speed is true or false, got {SHOW.repr(true_speed)}", key="dynamics.true_speed")
