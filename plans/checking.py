@@ -186,8 +186,29 @@ def inspect_svg(path: str | Path, precision: float | None = WRITER_PRECISION) ->
             problems.append(f"plan {g.get('id')}: {found} tagged vectors where the writer drew {declared!r}")
     for g, lines in by_group.items():
         _check_group(report, g, lines)
+        if g.get("data-contact-ratio") is not None:
+            _contact_ratio(report, g, lines)
     problems += gear_problems(root, precision)
     return report
+
+
+def _contact_ratio(report: SvgReport, g: ET.Element, lines: list[ET.Element]) -> None:
+    """An involute pair's ε_α read off the drawing: the drawn B1B2 over the drawn p_b against
+    ``data-contact-ratio``, within what the two lengths' rounding allows."""
+    gid = g.get("id") or "meshing"
+    stated = _number(g.get("data-contact-ratio"))
+    length = {}
+    for line in lines:
+        xy = [_number(line.get(k)) for k in ("x1", "y1", "x2", "y2")]
+        if line.get("data-quantity") in ("B1B2", "pb") and None not in xy:
+            length[line.get("data-quantity")] = math.hypot(xy[2] - xy[0], xy[3] - xy[1])
+    if stated is None or not math.isfinite(stated) or set(length) != {"B1B2", "pb"} or length["pb"] <= 0:
+        report.problems.append(f"plan {gid}: data-contact-ratio needs a finite value and the drawn B1B2 and pb")
+        return
+    r = 2.0 * math.sqrt(2.0) * report.precision
+    ratio = length["B1B2"] / length["pb"]
+    _add(report, Check(gid, "ε_α = B1B2/p_b (drawn) against the stated", abs(ratio - stated),
+                       ratio * (r / length["B1B2"] + r / length["pb"]) + _REL * stated, ""))
 
 
 def _check_group(report: SvgReport, g: ET.Element, lines: list[ET.Element]) -> None:

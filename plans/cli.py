@@ -135,6 +135,9 @@ def _check(paths: Sequence[str]) -> int:
         for gid, n in r.equations.items():
             equations += n
             print(f"  {n} closure equations checked in {gid}")
+        for c in r.checks:
+            if c.ok and c.what.startswith("ε_α"):     # the pair's contact ratio read off the drawing
+                print(f"  ok   {c.what}: |Δ| = {c.deviation:.2e} (tol {c.tolerance:.1e})")
         for problem in r.problems:
             print(f"  FAIL {problem}")
         failed += not r.ok

@@ -6,13 +6,16 @@ from __future__ import annotations
 
 import json
 import math
+import re
 
 import numpy as np
 import pytest
 import shapely
 
-from conftest import refused_line
+from conftest import EXAMPLES as _EXAMPLES, refused_line, sheet_words
 from plans import render
+from plans.checking import inspect_svg
+from plans.layout import measure_layout
 from plans.constructions.gear_cutting import cut_wheel, flank_angle, involute_distance
 from plans.gears.involute import gear_pair, min_shift
 from plans.scene import parse_scene
@@ -135,3 +138,62 @@ def test_undercut_appears_by_itself():
         assert _undercut_depth(z, min_shift(z)) < 1e-6, z
     for z in (18, 19, 20):
         assert _undercut_depth(z, 0.0) < 1e-6, z
+
+
+# --- the sheets ----------------------------------------------------------------------------------------------
+
+PAIR_EXAMPLES = sorted(p for p in (_EXAMPLES[0].parent / "gears").glob("pair_*.toml"))
+
+
+@pytest.fixture(scope="module")
+def pair_sheets(tmp_path_factory):
+    out = tmp_path_factory.mktemp("pairs")
+    for path in PAIR_EXAMPLES:
+        render(path).save(out)
+    return out
+
+
+def test_four_pair_examples_draw_their_sheets(pair_sheets):
+    names = {p.name for p in pair_sheets.glob("*.svg")}
+    assert len(PAIR_EXAMPLES) == 4
+    assert "pair_12_unshifted-cutting.svg" in names and "pair_12_unshifted-meshing.svg" not in names
+    for stem in ("pair_12_no_undercut", "pair_balanced", "pair_from_train"):
+        assert {f"{stem}-meshing.svg", f"{stem}-cutting.svg"} <= names
+    assert "pair_from_train-gears.svg" in names
+
+
+def test_pair_sheets_pass_plans_check_and_read_the_contact_ratio(pair_sheets):
+    """Every tagged segment of every meshing and cutting sheet measures within drawing precision,
+    and the drawn B1B2 over the drawn p_b is the computed ε_α within what the rounding allows."""
+    for svg in sorted(pair_sheets.glob("pair_*-*.svg")):
+        r = inspect_svg(svg)
+        assert r.ok and r.measurements, (svg.name, r.problems[:3])
+        if svg.name.endswith("-meshing.svg"):
+            rep = json.loads((pair_sheets / (svg.name.split("-")[0] + ".json")).read_text())["gear_pair"]
+            by = {m.quantity: m for m in r.measurements}
+            measured = by["B1B2"].length_mm / by["pb"].length_mm
+            assert measured == pytest.approx(rep["contact_ratio"], abs=2e-4)
+            assert any(c.what.startswith("ε_α") and c.ok for c in r.checks)
+            assert {"aw", "ra1", "ra2", "rb1", "rb2", "s1", "s2", "sa1", "sa2"} <= set(by)
+            assert by["aw"].value == pytest.approx(rep["centre_distance"], rel=1e-15)
+
+
+def test_a_doctored_contact_ratio_fails(pair_sheets, tmp_path):
+    text = (pair_sheets / "pair_balanced-meshing.svg").read_text(encoding="utf-8")
+    stated = re.search(r'data-contact-ratio="([^"]+)"', text).group(1)
+    doctored = tmp_path / "doctored.svg"
+    doctored.write_text(text.replace(f'data-contact-ratio="{stated}"',
+                                     f'data-contact-ratio="{float(stated) * 1.01!r}"'), encoding="utf-8")
+    r = inspect_svg(doctored)
+    assert not r.ok and any("ε_α" in p for p in r.problems)
+
+
+def test_pair_sheets_layout_is_clean(pair_sheets):
+    for svg in sorted(pair_sheets.glob("pair_*.svg")):
+        report = measure_layout(svg.read_text(encoding="utf-8"))
+        assert not any(report.counts.values()), (svg.name, report)
+
+
+def test_cutting_sheet_says_whether_undercut(pair_sheets):
+    assert "it is undercut" in sheet_words((pair_sheets / "pair_12_unshifted-cutting.svg").read_text())
+    assert "not undercut" in sheet_words((pair_sheets / "pair_12_no_undercut-cutting.svg").read_text())

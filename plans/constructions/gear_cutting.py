@@ -68,11 +68,11 @@ def step_for(tolerance: float, tip_radius: float, base_radius: float) -> float:
 
 
 def cut_wheel(z: int, m: float, alpha: float, x: float, addendum: float, clearance: float, rho: float,
-              tip_diameter: float, *, tolerance: float = 1e-4, spaces: int = 2) -> Polygon:
-    """The wheel's outline near the +y axis: the blank (tip circle ``tip_diameter``) within a sector
-    of ``spaces`` + 1 pitches, less the cutter's positions rolled in steps for ``tolerance`` (mm).
-    The spaces cut are centred at the clockwise angles 0, 2π/z, …; the tooth between the first two
-    is whole."""
+              tip_diameter: float, *, tolerance: float = 1e-4, spaces: int = 2, first: int = 0) -> Polygon:
+    """The wheel's outline near the +y axis: the blank (tip circle ``tip_diameter``) within the
+    sector of the spaces ``first`` … ``first + spaces − 1`` (centred at the clockwise angles k·2π/z)
+    and half a pitch beyond, less the cutter's positions rolled in steps for ``tolerance`` (mm);
+    the teeth between those spaces are whole."""
     r = m * z / 2.0
     ra = tip_diameter / 2.0
     rb = r * math.cos(alpha)
@@ -82,7 +82,7 @@ def cut_wheel(z: int, m: float, alpha: float, x: float, addendum: float, clearan
     p = math.pi * m
     dphi = step_for(tolerance, ra, rb)
     # the sector: from half a pitch anticlockwise of space 0 to half a pitch past the last space
-    a0, a1 = -0.5 * tau, (spaces - 0.5) * tau           # clockwise angles from +y
+    a0, a1 = (first - 0.5) * tau, (first + spaces - 0.5) * tau           # clockwise angles from +y
     angles = np.linspace(a0, a1, 721)
     fan = [(0.0, 0.0)] + [(ra * 1.01 * math.sin(a), ra * 1.01 * math.cos(a)) for a in angles]
     blank = Polygon(fan).intersection(shapely.Point(0.0, 0.0).buffer(ra, quad_segs=720))
@@ -91,7 +91,7 @@ def cut_wheel(z: int, m: float, alpha: float, x: float, addendum: float, clearan
     reach = 3.0 * m / (math.sin(alpha) * math.cos(alpha)) / r + 0.5 * tau
     phis = np.arange(-reach, reach + dphi, dphi)
     cuts = []
-    for k in range(-1, spaces + 1):
+    for k in range(first - 1, first + spaces + 1):
         uv = tooth + np.array([k * p, 0.0])
         for phi in phis:
             c, s = math.cos(phi), math.sin(phi)

@@ -8,7 +8,10 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from ...constructions.gear_pair import cutting, meshing
 from ...drawing import Style
+from ...drawing.gear_pair import draw_pair_sheet
+from ...drawing.svg import Heading
 from ...gears.pair import PairAnalysis
 from ...scene import Scene
 
@@ -37,4 +40,35 @@ def _finite(v: float) -> float | None:
 
 def pair_sheets(scene: Scene, a: PairAnalysis, stem: str, style: Style) -> dict[str, str]:
     """The meshing and cutting sheets the scene draws (file name → SVG)."""
-    return {}
+    p = a.pair
+    files: dict[str, str] = {}
+    given = (f"z = {p.z[0]}/{p.z[1]}, m = {p.module:g} mm, α = {math.degrees(p.alpha):g}°, "
+             f"x = {p.x[0]:.4g}/{p.x[1]:.4g} ({a.rule.replace('_', ' ')})")
+    if "meshing" in scene.draw:
+        s = meshing(a)
+        notes = (f"α_w = {math.degrees(p.alpha_w):.4f}°, a_w = {p.a_w:.4f} mm, y = {p.y:.5f}, Δy = {p.delta_y:.5f}; "
+                 f"d_w = {p.dw[0]:.3f}/{p.dw[1]:.3f}, d_a = {p.da[0]:.3f}/{p.da[1]:.3f}, d_f = {p.df[0]:.3f}/"
+                 f"{p.df[1]:.3f}, d_b = {p.db[0]:.3f}/{p.db[1]:.3f} mm.",
+                 f"ε_α = B_1B_2/p_b = {p.active:.4f}/{p.pb:.4f} = {p.contact_ratio:.4f}; specific sliding at B_2 "
+                 f"(wheel 1) {_text(p.sliding[0])}, at B_1 (wheel 2) {_text(p.sliding[1])}. s̄: chordal tooth "
+                 "thickness on the reference (s̄) and tip (s̄_a) circles.")
+        scales = f"detail {s.k:g}:1 (μ = {1 / s.k:g} mm/mm); general view 1:{1 / s.k0:g} (μ = {1 / s.k0:g} mm/mm)"
+        files[f"{stem}-meshing.svg"] = draw_pair_sheet(
+            s, Heading(scene.title, "Involute gear pair in mesh", given), ident="meshing", style=style, notes=notes,
+            scales=scales, contact_ratio=p.contact_ratio)
+    if "cutting" in scene.draw:
+        s = cutting(a)
+        under = f"undercut (x < x_min = {p.x_min[0]:.4f})" if p.undercut[0] else \
+            f"not undercut (x ≥ x_min = {p.x_min[0]:.4f})"
+        notes = (f"Wheel {a.names[0]} ({p.z[0]} teeth) cut by the rack cutter shifted by x·m = {p.x[0] * p.module:.4g} mm "
+                 f"from the pitch line (the cutter's tip rounded with ρ = {a.tip_radius:.4g} mm): the wheel is the blank "
+                 f"less the cutter rolled over it; it is {under}.",)
+        scales = f"{s.k:g}:1 (μ = {1 / s.k:g} mm/mm)"
+        files[f"{stem}-cutting.svg"] = draw_pair_sheet(
+            s, Heading(scene.title, "Generation of wheel 1 by the rack cutter", given), ident="cutting", style=style,
+            notes=notes, scales=scales)
+    return files
+
+
+def _text(v: float) -> str:
+    return f"{v:.3f}" if math.isfinite(v) else "not defined (interference)"
