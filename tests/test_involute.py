@@ -27,6 +27,16 @@ def test_khk_profile_shifted_pair():
     assert [round(v, 3) for v in g.df] == [32.100, 66.660]
 
 
+def test_khk_standard_pair():
+    """KHK Gear Technical Reference, the standard external pair (m = 3, α = 20°, z = 12/24):
+    a = 54.000, d = 36/72, d_a = 42/78, d_b = 33.829/67.658, d_f = 28.5/64.5 mm, as printed."""
+    g = gear_pair(12, 24, 3.0)
+    assert round(g.a_w, 3) == 54.000 and [round(v, 3) for v in g.d] == [36.0, 72.0]
+    assert [round(v, 3) for v in g.da] == [42.0, 78.0]
+    assert [round(v, 3) for v in g.db] == [33.829, 67.658]
+    assert [round(v, 3) for v in g.df] == [28.5, 64.5]
+
+
 def test_unshifted_pair_is_the_standard_one():
     g = gear_pair(20, 45, 2.5)
     assert g.alpha_w == pytest.approx(math.radians(20.0), abs=1e-15)
