@@ -197,3 +197,24 @@ def test_pair_sheets_layout_is_clean(pair_sheets):
 def test_cutting_sheet_says_whether_undercut(pair_sheets):
     assert "it is undercut" in sheet_words((pair_sheets / "pair_12_unshifted-cutting.svg").read_text())
     assert "not undercut" in sheet_words((pair_sheets / "pair_12_no_undercut-cutting.svg").read_text())
+
+
+def test_working_profiles_lie_on_the_cut_flanks_and_touch_on_the_line_of_action():
+    """The thick working profiles of the meshing sheet are on their wheel's cut outline (within
+    the cut's tolerance on paper) and each pair of them touches the other wheel's profile."""
+    from shapely.geometry import Polygon
+
+    from plans.constructions.gear_pair import meshing
+    from plans.gears.pair import analyse_pair
+    from plans.scene import read_scene
+
+    a = analyse_pair(read_scene(_EXAMPLES[0].parent / "gears" / "pair_balanced.toml").gear_pair)
+    s = meshing(a)
+    wheels = {n: Polygon(o) for n, o in s.outlines}
+    profiles = [(n, pts) for n, kind, pts in s.curves if n.startswith("working-profile")]
+    assert len(profiles) == 4
+    for name, pts in profiles:
+        own, other = ("wheel1", "wheel2") if "profile1" in name else ("wheel2", "wheel1")
+        d = shapely.distance(shapely.points(pts), wheels[own].exterior)
+        assert d.max() <= 1e-3 * s.k                      # 1 µm of the wheel
+        assert shapely.distance(shapely.points(pts), wheels[other].exterior).min() <= 1e-3 * s.k

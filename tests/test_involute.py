@@ -37,6 +37,25 @@ def test_khk_standard_pair():
     assert [round(v, 3) for v in g.df] == [28.5, 64.5]
 
 
+def test_khurmi_arc_of_contact():
+    """Khurmi & Gupta, Theory of Machines, toothed wheels (from my knowledge of the worked example;
+    its number may differ by edition): 20° involute pair, pinion 20 teeth, ratio 2, module 5 mm,
+    addendum one module, pitch-line speed 1.2 m/s — path of approach 12.65 mm, path of recess
+    11.49 mm, arc of contact 25.69 mm, the pinion turns through 29.43° while one pair is in mesh,
+    the largest sliding velocity (ω1 + ω2)·approach = 455.4 mm/s."""
+    g = gear_pair(20, 40, 5.0)
+    g1, g2 = (math.sqrt((da / 2) ** 2 - (db / 2) ** 2) for da, db in zip(g.da, g.db))
+    approach = g2 - g.dw[1] / 2 * math.sin(g.alpha_w)         # from B2 to P
+    recess = g1 - g.dw[0] / 2 * math.sin(g.alpha_w)           # from P to B1
+    assert round(approach, 2) == 12.65 and round(recess, 2) == 11.49
+    assert approach + recess == pytest.approx(g.active, rel=1e-14)
+    arc = g.active / math.cos(g.alpha)
+    assert round(arc, 2) == 25.69
+    assert round(math.degrees(arc / (g.d[0] / 2)), 2) == 29.43
+    w1 = 1.2e3 / (g.d[0] / 2)                                  # rad/s from the pitch-line speed, mm/s
+    assert round((w1 + w1 / 2) * round(approach, 2), 1) == 455.4
+
+
 def test_unshifted_pair_is_the_standard_one():
     g = gear_pair(20, 45, 2.5)
     assert g.alpha_w == pytest.approx(math.radians(20.0), abs=1e-15)

@@ -25,7 +25,7 @@ import numpy as np
 import shapely
 
 from ..gears.pair import PairAnalysis
-from .gear_cutting import cut_wheel, cutter_tooth
+from .gear_cutting import cut_wheel, cutter_tooth, flank_angle
 
 __all__ = ["PairSheet", "Tag", "meshing", "cutting", "ENLARGEMENTS", "MODULE_MM"]
 
@@ -168,6 +168,15 @@ def _detail(a: PairAnalysis, k: float) -> PairSheet:
         nrm = np.array([-u[1], u[0]]) * 1.5
         sheet.curves.append((f"pb-tick{j}", "thin", np.array([q - nrm, q + nrm])))
     sheet.points += [("N_1", tuple(n1)), ("N_2", tuple(n2)), ("B_1", tuple(b1)), ("B_2", tuple(b2)), ("P", (0.0, 0.0))]
+    # the working profiles: the parts of the flanks at P that come into contact, from the radius
+    # where the active line begins on them (|O1B2|, |O2B1|) to the tip, drawn exact and thick
+    lower = (float(np.hypot(*(b2 - o1))) / k, float(np.hypot(*(b1 - o2))) / k)
+    for i, (centre, turn) in enumerate(((o1, 0.0), (o2, math.pi - 0.5 * tau[i if i else 1]))):
+        rs = np.linspace(lower[i], p.da[i] / 2, 60)
+        beta = flank_angle(rs, p.module, p.z[i], p.alpha, p.x[i])
+        for side, b in (("right", beta), ("left", (tau[i] - beta) if i else -beta)):
+            pts = np.column_stack([rs * np.sin(b), rs * np.cos(b)])
+            sheet.curves.append((f"working-profile{i + 1}-{side}", "thick", _turned(pts, turn, k, centre)))
     arc = 14.0
     sheet.curves.append(("alpha-w", "thin", np.array([[-arc * math.cos(t), -arc * math.sin(t)]
                                                        for t in np.linspace(0.0, p.alpha_w, 30)])))

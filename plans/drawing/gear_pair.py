@@ -17,7 +17,7 @@ from .text import wrap
 
 __all__ = ["draw_pair_sheet"]
 
-_FILL = {"wheel": "#dfe8f3", "cutter": "#f2e3c9"}
+_FILL = {"wheel": "#dfe8f3", "wheel2": "#e4efdf", "cutter": "#f2e3c9"}
 _NAMES = {"B1B2": "B_1B_2", "pb": "p_b", "aw": "a_w", "xm": "x·m", "s1": "s̄_1", "s2": "s̄_2", "sa1": "s̄_{a1}",
           "sa2": "s̄_{a2}", "ra1": "r_{a1}", "ra2": "r_{a2}", "rb1": "r_{b1}", "rb2": "r_{b2}", "p": "p", "h": "h"}
 
@@ -34,7 +34,7 @@ def draw_pair_sheet(s: PairSheet, heading: Heading, *, ident: str, style: Style 
     thin, vec = fmt(style.thin, 3), fmt(style.vector, 3)
     bodies = dwg.add(dwg.g(id=f"{ident}-bodies", stroke=style.colour, stroke_width=vec))
     for name, pts in s.outlines:
-        fill = _FILL["cutter" if name.startswith("cutter") else "wheel"]
+        fill = _FILL["cutter" if name.startswith("cutter") else "wheel2" if name.startswith("wheel2") else "wheel"]
         canvas.polygon(bodies, [tuple(p) for p in pts], filled=True, width=style.vector, fill=fill,
                        id=f"{ident}-{name}")
     lines = dwg.add(dwg.g(id=f"{ident}-lines", fill="none", stroke=style.colour))
@@ -44,7 +44,11 @@ def draw_pair_sheet(s: PairSheet, heading: Heading, *, ident: str, style: Style 
             attrs["stroke_dasharray"] = "3 1.5"
         elif kind == "axis":
             attrs["stroke_dasharray"] = "8 1.5 1 1.5"
-        canvas.polyline(lines, [tuple(p) for p in pts], width=style.thin, id=f"{ident}-{name}", **attrs)
+        elif kind == "thick":
+            attrs["stroke_width"] = fmt(style.link, 3)
+            attrs["stroke"] = style.vector_colour
+        canvas.polyline(lines, [tuple(p) for p in pts], width=style.link if kind == "thick" else style.thin,
+                        id=f"{ident}-{name}", **attrs)
     for group, mu in (("detail", 1.0 / s.k), ("overview", 1.0 / s.k0 if s.k0 else 0.0)):
         tags = [t for t in s.tags if t.group == group]
         if not tags:
