@@ -63,6 +63,10 @@ def _coords(sch) -> list:
 
 
 def _values(v: tuple[float, ...], unit: str) -> str:
+    """The drive's values as a list; angles in 0 … 360° (a turn past 360° is written as its
+    angle, 370° as 10°)."""
+    if unit == "°":
+        return ", ".join(f"{(x % 360.0) + 0.0:g}{unit}" for x in v)
     return ", ".join(f"{x:g}{unit}" for x in v)
 
 

@@ -118,6 +118,36 @@ def _fit(text: str, room: float, size: float, smallest: float) -> tuple[str, flo
     return text.rstrip() + "…", smallest
 
 
+#: A title-block value is shrunk down to this height on one line (mm), then wrapped on two.
+ONE_LINE_MM = 2.8
+#: Baseline to baseline of a wrapped value, in text heights.
+LINE_SPACING = 1.15
+#: The part of a cell's width a value's measured width may fill.
+METRIC_MARGIN = 0.93
+
+
+def _fit_rows(text: str, room: float, size: float, row_h: float) -> tuple[list[str], float]:
+    """``text`` as the rows of a title-block cell ``room`` mm wide and ``row_h`` high: one line
+    at the largest height ≤ ``size`` down to :data:`ONE_LINE_MM`; else two lines, as large as
+    the cell's height allows and both fit; else one line cut short at 2 mm (:func:`_fit`).
+    The room is taken :data:`METRIC_MARGIN` short: renderers' fonts run a few per cent wider
+    than the metrics (cairosvg's did, past the frame)."""
+    room *= METRIC_MARGIN
+    w = width(runs(text), size, False)
+    if w <= room:
+        return [text], size
+    if w * ONE_LINE_MM / size <= room:
+        return [text], size * room / w
+    s = min(size, (row_h - 1.4) / (1.0 + LINE_SPACING))
+    while s >= 2.0:
+        rows = wrap(text, room, s)
+        if len(rows) <= 2 and all(width(runs(r), s, False) <= room for r in rows):
+            return rows, s
+        s = round(s - 0.1, 6)
+    value, size = _fit(text, room, size, 2.0)
+    return [value], size
+
+
 def _title_block(dwg: svgwrite.Drawing, canvas: Canvas, frame, fmt_: Format, block: TitleBlock, style: Style) -> None:
     W, H = fmt_.width, fmt_.height
     bw, bh = TITLE_BLOCK_MM
@@ -136,8 +166,10 @@ def _title_block(dwg: svgwrite.Drawing, canvas: Canvas, frame, fmt_: Format, blo
         base = y + row_h / 2 + 1.2
         canvas.text(texts, (x0 + 2.0, base), caption, size=style.small_text)
         this_room = room - (_FORMAT_MM if k == 1 else 0.0)
-        value, size = _fit(value, this_room, style.title_text if k == 0 else style.text, 2.0)
-        canvas.text(texts, (x0 + _CAPTION_MM + 1.5, y + row_h / 2 + 0.35 * size), value, size=size)
+        rows, size = _fit_rows(value, this_room, style.title_text if k == 0 else style.text, row_h)
+        first = y + row_h / 2 + 0.35 * size - 0.5 * LINE_SPACING * size * (len(rows) - 1)
+        for j, row in enumerate(rows):
+            canvas.text(texts, (x0 + _CAPTION_MM + 1.5, first + j * LINE_SPACING * size), row, size=size)
         y += row_h
     g.add(dwg.line(start=(fmt(x0 + _CAPTION_MM, 3), fmt(y_bottom - bh, 3)), end=(fmt(x0 + _CAPTION_MM, 3),
                    fmt(y_bottom, 3)), stroke_width=fmt(style.thin, 3)))
