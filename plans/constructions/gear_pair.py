@@ -171,7 +171,7 @@ def _detail(a: PairAnalysis, k: float) -> PairSheet:
     # the working profiles: the parts of the flanks at P that come into contact, from the radius
     # where the active line begins on them (|O1B2|, |O2B1|) to the tip, drawn exact and thick
     lower = (float(np.hypot(*(b2 - o1))) / k, float(np.hypot(*(b1 - o2))) / k)
-    for i, (centre, turn) in enumerate(((o1, 0.0), (o2, math.pi - 0.5 * tau[i if i else 1]))):
+    for i, (centre, turn) in enumerate(((o1, 0.0), (o2, math.pi - 0.5 * tau[1]))):
         rs = np.linspace(lower[i], p.da[i] / 2, 60)
         beta = flank_angle(rs, p.module, p.z[i], p.alpha, p.x[i])
         for side, b in (("right", beta), ("left", (tau[i] - beta) if i else -beta)):
