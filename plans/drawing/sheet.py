@@ -16,7 +16,7 @@ import svgwrite
 
 from .canvas import Canvas, fmt
 from .style import Style
-from .text import Box, plain, runs, width, wrap
+from .text import Box, box, plain, runs, width, wrap
 
 __all__ = ["Format", "FORMATS", "choose_format", "TitleBlock", "new_sheet", "FRAME_MM", "TITLE_BLOCK_MM",
            "LARGEST"]
@@ -120,8 +120,8 @@ def _fit(text: str, room: float, size: float, smallest: float) -> tuple[str, flo
 
 #: A title-block value is shrunk down to this height on one line (mm), then wrapped on two.
 ONE_LINE_MM = 2.8
-#: Baseline to baseline of a wrapped value, in text heights.
-LINE_SPACING = 1.15
+#: Baseline to baseline of a wrapped value, in text heights (more than a line's box, 1.23).
+LINE_SPACING = 1.3
 #: The part of a cell's width a value's measured width may fill.
 METRIC_MARGIN = 0.93
 
@@ -138,7 +138,8 @@ def _fit_rows(text: str, room: float, size: float, row_h: float) -> tuple[list[s
         return [text], size
     if w * ONE_LINE_MM / size <= room:
         return [text], size * room / w
-    s = min(size, (row_h - 1.4) / (1.0 + LINE_SPACING))
+    line = box(runs(text), 1.0, False, 0.0, 0.0)
+    s = min(size, (row_h - 1.0) / (LINE_SPACING + line.y1 - line.y0))
     while s >= 2.0:
         rows = wrap(text, room, s)
         if len(rows) <= 2 and all(width(runs(r), s, False) <= room for r in rows):
@@ -167,7 +168,11 @@ def _title_block(dwg: svgwrite.Drawing, canvas: Canvas, frame, fmt_: Format, blo
         canvas.text(texts, (x0 + 2.0, base), caption, size=style.small_text)
         this_room = room - (_FORMAT_MM if k == 1 else 0.0)
         rows, size = _fit_rows(value, this_room, style.title_text if k == 0 else style.text, row_h)
-        first = y + row_h / 2 + 0.35 * size - 0.5 * LINE_SPACING * size * (len(rows) - 1)
+        if len(rows) == 1:
+            first = y + row_h / 2 + 0.35 * size
+        else:       # the two lines' boxes (ascent of the first to descent of the second) centred in the row
+            b = box(runs(rows[0]), size, False, 0.0, 0.0)
+            first = y + (row_h - (LINE_SPACING * size + b.y1 - b.y0)) / 2 - b.y0
         for j, row in enumerate(rows):
             canvas.text(texts, (x0 + _CAPTION_MM + 1.5, first + j * LINE_SPACING * size), row, size=size)
         y += row_h
