@@ -93,3 +93,12 @@ def refused_line(tmp_path: Path, scene_text: str) -> str:
     assert r.returncode == 2 and len(lines) == 1, r.stderr
     assert not out.exists()
     return lines[0]
+
+
+def folding_four_bar() -> dict:
+    """A four-bar whose crank cannot turn fully: coupler and rocker line up near φ ≈ 92.6°."""
+    a = [0.1 / np.sqrt(2.0)] * 2
+    return {"title": "folding four-bar",
+            "points": {"O": [0.0, 0.0], "A": a, "B": [0.22918773, 0.13223321], "D": [0.3, 0.0]},
+            "links": {"0": ["O", "D"], "1": ["O", "A"], "2": ["A", "B"], "3": ["B", "D"]},
+            "drive": {"link": "1", "angle": [45.0], "omega": 10.0, "epsilon": 0.0}}

@@ -25,7 +25,7 @@ import tomllib
 import numpy as np
 import pytest
 
-from conftest import EXAMPLES
+from conftest import EXAMPLES, folding_four_bar
 from plans.handout import MARGIN_SIN
 from plans.kinematics import WARN_SIN, analyse
 from plans.kinematics.generic import GroupEquations
@@ -50,15 +50,6 @@ def _load(data: dict):
     scene = parse_scene(data)
     mech = build_mechanism(scene)
     return scene, mech, analyse_structure(mech)
-
-
-def _folding_four_bar() -> dict:
-    """A four-bar whose crank cannot turn fully: coupler and rocker line up near φ ≈ 92.6°."""
-    a = [0.1 / np.sqrt(2.0)] * 2
-    return {"title": "folding four-bar",
-            "points": {"O": [0.0, 0.0], "A": a, "B": [0.22918773, 0.13223321], "D": [0.3, 0.0]},
-            "links": {"0": ["O", "D"], "1": ["O", "A"], "2": ["A", "B"], "3": ["B", "D"]},
-            "drive": {"link": "1", "angle": [45.0], "omega": 10.0, "epsilon": 0.0}}
 
 
 def _long_crank_class4() -> dict:
@@ -125,7 +116,7 @@ def _closeness(motion, group: str, links: tuple[str, ...], i: int) -> tuple[floa
 
 CASES = {
     # kind: (scene, a position before its dead position, the side the dead position lies on)
-    "class II": (_folding_four_bar(), 92.0, 1.0),
+    "class II": (folding_four_bar(), 92.0, 1.0),
     "class IV": (_long_crank_class4(), 95.0, 1.0),
     "driven": (_example("hydraulic_boom"), -0.18, -1.0),
 }

@@ -16,6 +16,7 @@ from plans.model import build_mechanism
 from plans.scene import read_scene
 from plans.structure import ComplexGroup, analyse_structure
 
+from conftest import folding_four_bar
 from test_complex import _folding_triad, _load
 from reference import Reference
 
@@ -121,20 +122,11 @@ def test_local_singular_distance_matches_full_search(delta):
     assert d == pytest.approx(_full_search(motion, "III(2-3-4-5)", 0), rel=1e-9)
 
 
-def _folding_four_bar() -> dict:
-    """A four-bar whose crank cannot turn fully: coupler and rocker line up near φ ≈ 92.6°."""
-    a = [0.1 / np.sqrt(2.0)] * 2
-    return {"title": "folding four-bar",
-            "points": {"O": [0.0, 0.0], "A": a, "B": [0.22918773, 0.13223321], "D": [0.3, 0.0]},
-            "links": {"0": ["O", "D"], "1": ["O", "A"], "2": ["A", "B"], "3": ["B", "D"]},
-            "drive": {"link": "1", "angle": [45.0], "omega": 10.0, "epsilon": 0.0}}
-
-
 @pytest.mark.parametrize("delta", [0.05, 0.3])
 def test_local_singular_distance_class_ii(delta):
     """A class II group near its limit position: the same answer as the full search."""
     from plans.kinematics.singular import distance
-    mech, st = _load(_folding_four_bar())
+    mech, st = _load(folding_four_bar())
     lo, hi = 90.0, 95.0                       # the limit position, by bisection on assembly
     for _ in range(50):
         mid = 0.5 * (lo + hi)

@@ -26,7 +26,7 @@ import numpy as np
 
 from ..dynamics import MachineDynamics, Startup
 from .diagrams import Graph, make_graph, nice_step, ticks_for
-from .scales import SERIES, fitting_scale
+from .scales import fitting_scale
 
 __all__ = ["DynamicsDiagrams", "Wittenbauer", "Tangent", "dynamics_diagrams", "StartupDiagrams", "startup_diagrams", "PHI_MM", "GRAPH_MM", "GAP_MM",
            "WITTENBAUER_MM"]
@@ -99,12 +99,6 @@ class DynamicsDiagrams:
     wittenbauer: Wittenbauer
 
 
-def _series_at_least(value: float) -> float:
-    """The smallest number of the scale series (:data:`SERIES` × 10^k) not below ``value``."""
-    k = math.floor(math.log10(value))
-    return min(m * 10.0 ** j for j in (k, k + 1) for m in SERIES if m * 10.0 ** j >= value * (1 - 1e-12))
-
-
 def dynamics_diagrams(machine: MachineDynamics) -> DynamicsDiagrams:
     """The sheet's geometry for a solved steady cycle (see the module)."""
     n = len(machine.theta)
@@ -136,7 +130,7 @@ def dynamics_diagrams(machine: MachineDynamics) -> DynamicsDiagrams:
     top = m.origin[1] + m.low - GAP_MM
     lo_ = min(0.0, float(np.min(work)), float(np.min(work_g)), float(np.min(other)))
     hi_ = max(0.0, float(np.max(work)), float(np.max(work_g)), float(np.max(other)))
-    pole = _series_at_least(max(hi_ - lo_, 1e-300) / GRAPH_MM / (m.mu * mu_phi))
+    pole = fitting_scale(max(hi_ - lo_, 1e-300) / GRAPH_MM / (m.mu * mu_phi), 1.0)     # the series' next H
     a = make_graph("A", "A", "J", top=top, x=x, values=work, at=at, graphical=(at, work_g), extra=other,
                    extra_symbol=sym[1], mu=m.mu * mu_phi * pole)
     top = a.origin[1] + a.low - GAP_MM

@@ -104,22 +104,24 @@ def cut_wheel(z: int, m: float, alpha: float, x: float, addendum: float, clearan
 
 def flank_angle(radius: np.ndarray, m: float, z: int, alpha: float, x: float) -> np.ndarray:
     """The clockwise angle from +y (rad) of the involute flank right of space 0 at ``radius`` (mm)."""
-    r = m * z / 2.0
-    rb = r * math.cos(alpha)
-    e = math.pi * m - m * (math.pi / 2.0 + 2.0 * x * math.tan(alpha))
+    rb = m * z / 2.0 * math.cos(alpha)
     a_r = np.arccos(np.clip(rb / np.asarray(radius, float), -1.0, 1.0))
-    inv = lambda a: np.tan(a) - a        # noqa: E731
-    return e / (2.0 * r) + inv(a_r) - inv(alpha)
+    return _flank_offset(m, z, alpha, x) + np.tan(a_r) - a_r
 
 
 def involute_distance(points: np.ndarray, m: float, z: int, alpha: float, x: float) -> np.ndarray:
     """The distance (mm) of ``points`` (N, 2; outside the base circle) from the involute flank right
     of space 0, along its normal (see the module)."""
-    r = m * z / 2.0
-    rb = r * math.cos(alpha)
+    rb = m * z / 2.0 * math.cos(alpha)
     pts = np.asarray(points, float)
     radius = np.hypot(pts[:, 0], pts[:, 1])
     beta = np.arctan2(pts[:, 0], pts[:, 1])            # clockwise from +y
     a_p = np.arccos(np.clip(rb / radius, -1.0, 1.0))
+    return rb * np.abs(beta - (np.tan(a_p) - a_p) - _flank_offset(m, z, alpha, x))
+
+
+def _flank_offset(m: float, z: int, alpha: float, x: float) -> float:
+    """The clockwise angle of the flank right of space 0 at the base circle: e/(2r) − inv α, with
+    e = p − s the space width on the reference circle r."""
     e = math.pi * m - m * (math.pi / 2.0 + 2.0 * x * math.tan(alpha))
-    return rb * np.abs(beta - (np.tan(a_p) - a_p) - (e / (2.0 * r) - (math.tan(alpha) - alpha)))
+    return e / (m * z) - (math.tan(alpha) - alpha)

@@ -200,8 +200,8 @@ def _overview(sheet: PairSheet, a: PairAnalysis) -> None:
     height = p.a_w + p.da[0] / 2 + p.da[1] / 2
     k0 = next((r for r in REDUCTIONS if height * r <= OVERVIEW_MM), REDUCTIONS[-1])
     sheet.k0 = k0
-    x0 = sheet.bounds()[0] - 25.0 - p.da[1] / 2 * k0
-    low = sheet.bounds()[1]
+    left, low, _, _ = sheet.bounds()
+    x0 = left - 25.0 - p.da[1] / 2 * k0
     o1 = np.array([x0, low + p.da[0] / 2 * k0])
     o2 = o1 + np.array([0.0, p.a_w * k0])
     for i, centre in enumerate((o1, o2)):

@@ -10,6 +10,7 @@ The start-up: ω(t) and the moments against time, as the kinematic diagrams are 
 
 from __future__ import annotations
 
+from ..constructions.diagrams import Graph
 from ..constructions.dynamics import DynamicsDiagrams, StartupDiagrams, Wittenbauer
 from .canvas import Canvas, fmt
 from .diagrams import LEFT_MM, RIGHT_MM, draw_graph, time_axis
@@ -38,8 +39,7 @@ def draw_dynamics(d: DynamicsDiagrams, heading: Heading, *, ident: str, style: S
                   notes: tuple[str, ...] = (), scales: str = "") -> str:
     """SVG text of the dynamics sheet (see the module), ``scales`` for the title block."""
     w = d.wittenbauer
-    area = FORMATS[2].area
-    note_rows = sum(len(wrap(line, area.x1 - area.x0 - 6.0, style.small_text)) for line in notes)
+    note_rows = _note_rows(notes, style)
     wx = d.length + RIGHT_MM + BETWEEN_MM            # Wittenbauer's ΔT axis
     wy = -w.high                                     # its top level with the graphs' top
     last = d.graphs[-1]
@@ -49,18 +49,29 @@ def draw_dynamics(d: DynamicsDiagrams, heading: Heading, *, ident: str, style: S
                             block=TitleBlock(heading.mechanism, heading.sheet, heading.position, scales))
     for g in d.graphs:
         draw_graph(dwg, canvas, g, f"{ident}-{g.quantity}", style, mu_x=d.mu_phi, length=d.length, abscissa="φ")
-        if g.extra:           # the works: name the two curves where they are farthest apart
-            names = dwg.add(dwg.g(id=f"{ident}-{g.quantity}-names", fill=style.colour))
-            j = max(range(len(g.exact)), key=lambda k: abs(g.exact[k][1] - g.extra[k][1]))
-            up = 1.0 if g.exact[j][1] >= g.extra[j][1] else -1.0
-            for pts, name, key, side in ((g.exact, d.works[0], "a", up), (g.extra, d.works[1], "b", -up)):
-                canvas.label(names, pts[j], name, size=style.text, prefer=(0.3, side),
-                             ident=f"{ident}-{g.quantity}-name-{key}")
+        if g.extra:           # the works
+            _name_curves(dwg, canvas, g, d.works, f"{ident}-{g.quantity}", style)
     _wittenbauer(dwg, canvas, w, (wx, wy), f"{ident}-wittenbauer", style)
     if notes:
         note_lines(canvas, dwg.add(dwg.g(id=f"{ident}-notes")), notes, style)
     canvas.place_labels(dwg.add(dwg.g(id=f"{ident}-leaders")))
     return dwg.tostring()
+
+
+def _note_rows(notes: tuple[str, ...], style: Style) -> int:
+    """Rows the notes take, wrapped to the A3 drawing area's width as :func:`note_lines` wraps them."""
+    area = FORMATS[2].area
+    return sum(len(wrap(line, area.x1 - area.x0 - 6.0, style.small_text)) for line in notes)
+
+
+def _name_curves(dwg, canvas: Canvas, g: Graph, names: tuple[str, str], ident: str, style: Style) -> None:
+    """Name a graph's two curves (``exact`` and ``extra``) where they lie farthest apart, each on
+    its own side."""
+    group = dwg.add(dwg.g(id=f"{ident}-names", fill=style.colour))
+    j = max(range(len(g.exact)), key=lambda k: abs(g.exact[k][1] - g.extra[k][1]))
+    up = 1.0 if g.exact[j][1] >= g.extra[j][1] else -1.0
+    for pts, name, key, side in ((g.exact, names[0], "a", up), (g.extra, names[1], "b", -up)):
+        canvas.label(group, pts[j], name, size=style.text, prefer=(0.3, side), ident=f"{ident}-name-{key}")
 
 
 def _wittenbauer(dwg, canvas: Canvas, w: Wittenbauer, at: tuple[float, float], ident: str, style: Style) -> None:
@@ -148,10 +159,8 @@ def draw_startup(d: StartupDiagrams, heading: Heading, *, ident: str, style: Sty
                  notes: tuple[str, ...] = (), scales: str = "") -> str:
     """SVG text of the start-up sheet: ω(t) with the steady cycle's ω_max and ω_min (dashed),
     and the motor's and the loads' moments at the crank against time."""
-    area = FORMATS[2].area
-    rows = sum(len(wrap(line, area.x1 - area.x0 - 6.0, style.small_text)) for line in notes)
     last = d.graphs[-1]
-    bottom = last.origin[1] + last.low - 16.0 - NOTE_LINE_MM * rows
+    bottom = last.origin[1] + last.low - 16.0 - NOTE_LINE_MM * _note_rows(notes, style)
     box = (-LEFT_MM, bottom, d.length + RIGHT_MM + 8.0, 10.0)
     dwg, canvas = new_sheet(FORMATS[2], box, ident=ident, style=style,
                             block=TitleBlock(heading.mechanism, heading.sheet, heading.position, scales))
@@ -162,12 +171,7 @@ def draw_startup(d: StartupDiagrams, heading: Heading, *, ident: str, style: Sty
         for y, key in zip(d.steady, ("max", "min")):
             canvas.line(band, (0.0, y), (d.length, y), width=style.thin, stroke_width=fmt(style.thin, 3),
                         stroke_dasharray="2 1", id=f"{ident}-steady-{key}")
-    m = d.graphs[1]
-    names = dwg.add(dwg.g(id=f"{ident}-M-names", fill=style.colour))
-    j = max(range(len(m.exact)), key=lambda k: abs(m.exact[k][1] - m.extra[k][1]))
-    up = 1.0 if m.exact[j][1] >= m.extra[j][1] else -1.0
-    canvas.label(names, m.exact[j], "M_motor", size=style.text, prefer=(0.3, up), ident=f"{ident}-M-name-a")
-    canvas.label(names, m.extra[j], "M_r", size=style.text, prefer=(0.3, -up), ident=f"{ident}-M-name-b")
+    _name_curves(dwg, canvas, d.graphs[1], ("M_motor", "M_r"), f"{ident}-M", style)
     time_axis(dwg, canvas, d.length, d.time_ticks, last, ident, style)
     if notes:
         note_lines(canvas, dwg.add(dwg.g(id=f"{ident}-notes")), notes, style)

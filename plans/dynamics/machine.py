@@ -27,7 +27,7 @@ import numpy as np
 from ..errors import PlansError
 from ..kinematics import analyse
 from ..kinematics.cycle import Cycle, output_motion
-from ..kinetostatics import Travel
+from ..kinetostatics import Travel, forces_following
 from ..scene import Scene
 from .piecewise import Piecewise, combine, fit, nodes_of
 from .reduced import Reduced, reduce
@@ -131,10 +131,7 @@ def machine_dynamics(scene: Scene, cycle: Cycle) -> MachineDynamics:
     w1 = float(mech.drive.speed)
     sense = 1.0 if w1 > 0.0 else -1.0
     start = float(cycle.start)
-    follows = [f for f in scene.forces if f.follows_output]
-    if follows and cycle.extreme_output is None:
-        raise PlansError(f"the force at {follows[0].at} follows the output link's travel from its extreme position, "
-                         f"and link {cycle.output.link} turns fully; name a slider or a rocker in [plans] output")
+    follows = forces_following(scene, cycle)
     low = high = 0.0
     if cycle.extreme_output is not None:
         low, high = float(cycle.extreme_output.s[0]), float(cycle.extreme_output.s[1])

@@ -18,6 +18,7 @@ from .centres import Centres, centre_from, centres
 from .singular import distance
 from .sliders import Sliding, link_angles, sliding
 from .special import GroupPoints, TriadSolution, disagreements, group_points, triads
+from ..scene import DriveKind
 from .state import Solution
 
 __all__ = ["Motion"]
@@ -41,7 +42,7 @@ class Motion(Solution):
         are solved."""
         d = self.mechanism.drive
         s = self.links.get(d.link)
-        if not d.kind.angular or s is None or s.omega is None or d.kind.name != "ROTARY":
+        if d.kind != DriveKind.ROTARY or s is None or s.omega is None:
             return float(d.speed), float(d.rate)
         return float(s.omega[i]), float(s.epsilon[i]) if s.epsilon is not None else float(d.rate)
 

@@ -21,13 +21,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import PlansError
+from ..errors import PlansError, SceneError
 from ..kinematics import Motion
+from ..kinematics.cycle import Cycle
 from ..kinematics.state import cross
 from ..scene import Scene
 from ..scene.values import AppliedForce
 
-__all__ = ["Load", "Couple", "Travel", "applied_loads", "external_force", "MIN_LOAD", "REST_RTOL"]
+__all__ = ["Load", "Couple", "Travel", "applied_loads", "external_force", "forces_following", "MIN_LOAD", "REST_RTOL"]
 
 #: A force below this (N), or a moment below this (N·m), at a position is no load there (it is
 #: taken as 0): nothing a machine feels is this small, and a load near the end of the double
@@ -99,6 +100,18 @@ class Couple:
     link: str
     moment: np.ndarray
     kind: str
+
+
+def forces_following(scene: Scene, cycle: Cycle) -> list[AppliedForce]:
+    """The forces that follow the output link's travel (a law or a stroke). A cycle whose output
+    turns fully has no extreme to measure the travel from: refused in one line, naming the force."""
+    follows = [f for f in scene.forces if f.follows_output]
+    if follows and cycle.extreme_output is None:
+        f, link = follows[0], cycle.output.link
+        raise SceneError(f"the force at {f.at} follows the travel of the output link {link} from its extreme "
+                         f"position, and link {link} turns fully and has none; name a slider or a rocker in "
+                         "[plans] output", key=f"forces[{f.index}]")
+    return follows
 
 
 def applied_loads(motion: Motion, scene: Scene, travel: Travel | None = None, *,

@@ -14,10 +14,9 @@ from typing import Iterator
 import numpy as np
 
 from ..dynamics import MachineDynamics, Startup, at_true_speed, machine_dynamics, startup
-from ..errors import SceneError
 from ..kinematics import Motion, analyse
 from ..kinematics.cycle import Cycle, solve_cycle
-from ..kinetostatics import Forces, Travel, solve_forces
+from ..kinetostatics import Forces, Travel, forces_following, solve_forces
 from ..model import build_mechanism
 from ..scene import Scene
 from ..structure import analyse_structure
@@ -87,15 +86,9 @@ def output_travel(scene: Scene, cycle: Cycle | None) -> Travel | None:
     """The output link's travel at the cycle's positions, when a force follows it (a law or a
     stroke); None otherwise. A cycle whose output turns fully has no extremes to measure from:
     refused, naming the force."""
-    follows = [f for f in scene.forces if f.follows_output]
-    if not follows or cycle is None:
+    if cycle is None or not forces_following(scene, cycle):
         return None
     out, ext = cycle.output, cycle.extreme_output
-    if ext is None or out.v is None:
-        f = follows[0]
-        raise SceneError(f"the force at {f.at} follows the travel of the output link {out.link} from its extreme "
-                         f"position, and link {out.link} turns fully and has none; name a slider or a rocker in "
-                         "[plans] output", key=f"forces[{f.index}]")
     return Travel(link=out.link, kind=out.kind, s=out.s, v=out.v, low=float(ext.s[0]), high=float(ext.s[1]),
                   scale=float(np.max(np.abs(out.v))))
 
