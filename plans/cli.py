@@ -146,12 +146,20 @@ def _check(paths: Sequence[str]) -> int:
     return 1 if failed else 0
 
 
-def _handout(source: str, out: str, quiet: bool, random: str | None, seed: str | None) -> int:
+def _handout(source: str, out: str, quiet: bool, random: str | None, seed: str | None, moodle: str | None = None,
+             tolerance: str | None = None) -> int:
     """``plans handout``: variants from a variants file, or ``--random N`` around a base scene;
-    every variant solved before anything is written (plans.handout)."""
+    every variant solved before anything is written (plans.handout); with ``--moodle`` also
+    the Moodle XML question bank."""
     from . import handout as ho   # here: the other commands need none of it
 
     check_folder(out)
+    if tolerance is not None and moodle is None:
+        raise OutputError("--tolerance goes with --moodle FILE.xml (the tolerance of its numerical fields)",
+                          key="--tolerance")
+    tol = ho.parse_tolerance(tolerance) if tolerance is not None else ho.DEFAULT_TOLERANCE
+    if moodle is not None and not moodle.lower().endswith(".xml"):
+        raise OutputError(f"--moodle names the question bank to write, a .xml file, got {moodle!r}", key="--moodle")
     require_cairo()              # the answer keys are SVG and PDF
     if random is None:
         if seed is not None:
@@ -168,12 +176,19 @@ def _handout(source: str, out: str, quiet: bool, random: str | None, seed: str |
         bar = ho.Progress(count, "drawing")
         h, drawn = ho.random_variants(source, count, number, progress=bar)
     bar.close()
+    bank = None
+    if moodle is not None:
+        refuse_inputs([Path(moodle)], [p for p in (h.base, h.source) if p is not None])
+        bank = ho.moodle_xml(h, drawn, [ho.variant_asked(d) for d in drawn], tolerance=tol)
     bar = ho.Progress(len(drawn), "writing")
     ho.write_handout(h, drawn, out, progress=bar)
     bar.close()
+    if bank is not None:
+        write_files({Path(moodle).name: bank}, Path(moodle).parent)
     if not quiet:
         extra = f", seed {h.seed}, margins |condition| ≥ {ho.margin_text(h)} ({h.redraws} draw{'s' if h.redraws != 1 else ''} rejected and redrawn)" if h.seed is not None else ""
-        print(f"wrote {len(drawn)} variants of {h.base.name}{extra} to {out}/ (open {out}/index.html)")
+        print(f"wrote {len(drawn)} variants of {h.base.name}{extra} to {out}/ (open {out}/index.html)"
+              + (f"; the Moodle question bank to {moodle} (tolerance ±{tol * 100:g} %)" if bank is not None else ""))
     for d in drawn:
         for w in d.sheets.warnings:
             print(f"warning: {w}", file=sys.stderr)
@@ -285,6 +300,11 @@ def main(argv: Sequence[str] | None = None) -> int:
                    "angle over the turn, ω from a standard series), each away from singular positions")
     h.add_argument("--seed", metavar="S", help="seed of --random (default 0): the same seed gives the same files")
     h.add_argument("-o", "--output", default="handout", metavar="DIR")
+    h.add_argument("--moodle", metavar="FILE.xml", help="also write a Moodle XML question bank: a category for the "
+                   "handout, a Cloze question a variant (the assignment as an image, the data, a numerical field per "
+                   "asked quantity)")
+    h.add_argument("--tolerance", metavar="P%", help="tolerance of the Moodle fields, percent of the exact value "
+                   "(default 2%%)")
     h.add_argument("-q", "--quiet", action="store_true")
     gr = sub.add_parser("gears", help="gear trains: planetary synthesis")
     gsub = gr.add_subparsers(dest="gears_command", required=True)
@@ -309,7 +329,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             scenes = args.scenes if args.command == "render" else [str(p) for p in _examples()]
             return _render(scenes, args.output, args.quiet, formats, dpi)
         if args.command == "handout":
-            return _handout(args.source, args.output, args.quiet, args.random, args.seed)
+            return _handout(args.source, args.output, args.quiet, args.random, args.seed, args.moodle,
+                            args.tolerance)
         if args.command == "gears":
             return _synthesize(args)
         if args.command == "bench":

@@ -24,7 +24,7 @@ from .sheet import FORMATS, TitleBlock, new_sheet
 from .style import Style
 from .text import Box, runs, width, wrap
 
-__all__ = ["draw_assignment", "Layout", "LAYOUT"]
+__all__ = ["draw_assignment", "given_cells", "Layout", "LAYOUT"]
 
 
 @dataclass(frozen=True)
@@ -70,14 +70,16 @@ def _values(v: tuple[float, ...], unit: str) -> str:
     return ", ".join(f"{x:g}{unit}" for x in v)
 
 
-def _given(scene: Scene, lengths: Mapping[str, float] | None) -> list[str]:
+def given_cells(scene: Scene, lengths: Mapping[str, float] | None, drive: bool = True) -> list[str]:
     """The data table's cells: every length (named as ``lengths`` names them, else by the
-    scene's point order), then the drive's position, speed and rate."""
+    scene's point order), then (``drive``) the drive's position, speed and rate."""
     if lengths is None:
         lengths = {"".join(sorted(pair, key=list(scene.points).index)): value for pair, value in scene.lengths.items()}
     cells = [f"l_{{{name.replace('-', '')}}} = {value:g} m" for name, value in lengths.items()]
     d = scene.drive
     j = d.link
+    if not drive:
+        return cells
     if d.kind.angular:
         cells += [f"φ_{{{j}}} = {_values(d.values, '°')}", f"ω_{{{j}}} = {d.speed:g} rad/s",
                   f"ε_{{{j}}} = {d.rate:g} rad/s²"]
@@ -117,27 +119,33 @@ def _task(scene: Scene, points: Sequence[str], links: Sequence[str]) -> str:
 
 def draw_assignment(scheme_at: Callable[[float], Scheme], scene: Scene, *, variant: str, points: Sequence[str],
                     links: Sequence[str], lengths: Mapping[str, float] | None = None, style: Style = Style(),
-                    layout: Layout = LAYOUT) -> str:
+                    layout: Layout = LAYOUT, extra: Sequence[str] = (), task: str | None = None,
+                    areas: Sequence[tuple[str, str, str]] | None = None, position: str | None = None,
+                    drawn_at: float | None = None) -> str:
     """SVG text of a variant's assignment sheet (A3 landscape): the scheme at the first asked
     position (``scheme_at(μl)`` constructs it; drawn in the finest series μl that fits its slot),
     the given lengths and drive values, the task (find the velocities and accelerations of
     ``points``, the angular ones of ``links``), and an empty framed area per plan, labelled.
-    ``lengths`` names the given lengths as the scene file does (``OA``)."""
+    ``lengths`` names the given lengths as the scene file does (``OA``). Other kinds of
+    assignment add ``extra`` data cells (masses, loads), say their own ``task``, frame their own
+    ``areas`` ((id, name, the scale to write in) each) and give their own ``position`` (the title
+    block's row; the drive's cells are then left out of the table)."""
     fmt_ = FORMATS[2]
     d = scene.drive
     j = d.link
     L = layout.left
     t = Box(L.x0 + layout.inset, L.y0, L.x1 - layout.inset, L.y1 - 1.0)
-    cells = _given(scene, lengths)
+    cells = given_cells(scene, lengths, drive=position is None) + list(extra)
     cw = (t.x1 - t.x0) / layout.columns
     places = _flow([width(runs(c), style.text, False) + 4.0 for c in cells], cw, layout.columns)
     rows = max((r for r, _, _ in places), default=-1) + 1
-    task = wrap(_task(scene, points, links), t.x1 - t.x0 - 6.0, style.text)
+    task = wrap(task or _task(scene, points, links), t.x1 - t.x0 - 6.0, style.text)
     top = t.y1 - 5.0 * len(task) - 1.5 - rows * layout.row        # the table's first line
     slot = Box(L.x0, L.y0, L.x1, top - 6.5 - 3.0)
     mu = _fit_mu(scheme_at, slot)
-    position = (f"φ_{{{j}}} = {_values(d.values, '°')}, ω_{{{j}}} = {d.speed:g} rad/s, ε_{{{j}}} = {d.rate:g} rad/s²"
-                if d.kind.angular else f"s = {_values(d.values, ' m')}, v = {d.speed:g} m/s, a = {d.rate:g} m/s²")
+    position = position or (
+        f"φ_{{{j}}} = {_values(d.values, '°')}, ω_{{{j}}} = {d.speed:g} rad/s, ε_{{{j}}} = {d.rate:g} rad/s²"
+        if d.kind.angular else f"s = {_values(d.values, ' m')}, v = {d.speed:g} m/s, a = {d.rate:g} m/s²")
     block = TitleBlock(scene.title, f"Assignment, {variant}", position,
                        f"μ_l = {mu:g} m/mm (scheme); plan scales: the student's")
     ident = "assignment"
@@ -153,8 +161,9 @@ def draw_assignment(scheme_at: Callable[[float], Scheme], scene: Scene, *, varia
 
     g = dwg.add(dwg.g(id=f"{ident}-data", stroke=style.colour, fill="none", stroke_width=fmt(style.thin, 3)))
     texts = dwg.add(dwg.g(id=f"{ident}-data-text"))
-    caption = "Given" + (f" (the scheme is drawn at φ_{{{j}}} = {d.values[0]:g}°)"
-                         if d.kind.angular and len(d.values) > 1 else "")
+    at = d.values[0] if drawn_at is None else drawn_at
+    caption = "Given" + (f" (the scheme is drawn at φ_{{{j}}} = {at % 360.0 + 0.0:.4g}°)"
+                         if d.kind.angular and (len(d.values) > 1 or drawn_at is not None) else "")
     canvas.text(texts, (t.x0, top - 2.5), caption, size=style.text)
     for k, (cell, (r, c, span)) in enumerate(zip(cells, places)):
         x, y = t.x0 + c * cw, top + r * layout.row
@@ -164,18 +173,22 @@ def draw_assignment(scheme_at: Callable[[float], Scheme], scene: Scene, *, varia
     for k, line in enumerate(task):
         canvas.text(texts, (t.x0, y + 5.0 * k), line, size=style.text, ident=f"{ident}-task{k}")
 
-    kinds = [k for k in ("velocity", "acceleration") if k in scene.draw] or ["velocity"]
+    if areas is None:
+        kinds = [k for k in ("velocity", "acceleration") if k in scene.draw] or ["velocity"]
+        areas = [(k, *_AREAS[k]) for k in kinds]
+        many = len(d.values) > 1
+    else:
+        many = False
     a = layout.answers
-    h = (a.y1 - a.y0 - layout.gap * (len(kinds) - 1)) / len(kinds)
+    h = (a.y1 - a.y0 - layout.gap * (len(areas) - 1)) / len(areas)
     frames = dwg.add(dwg.g(id=f"{ident}-answers", stroke=style.colour, fill="none", stroke_width=fmt(style.vector, 3)))
-    for k, kind in enumerate(kinds):
+    for k, (kind, name, scale) in enumerate(areas):
         y0 = a.y0 + k * (h + layout.gap)
         el = dwg.rect(insert=(fmt(a.x0, 3), fmt(y0, 3)), size=(fmt(a.x1 - a.x0, 3), fmt(h, 3)),
                       id=f"{ident}-area-{kind}")
         el.attribs["data-area"] = kind
         frames.add(el)
-        name, scale = _AREAS[kind]
-        plural = name.replace(" plan", " plans") if len(d.values) > 1 else name
+        plural = name.replace(" plan", " plans") if many else name
         canvas.text(texts, (a.x0 + 3.0, y0 + 6.0), plural, size=style.text, ident=f"{ident}-area-{kind}-name")
         canvas.text(texts, (a.x1 - 3.0 - width(runs(scale), style.text, False), y0 + 6.0), scale, size=style.text,
                     ident=f"{ident}-area-{kind}-scale")

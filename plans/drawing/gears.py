@@ -103,11 +103,14 @@ def _end_view(dwg, canvas: Canvas, sheet: GearSheet, ident: str, style: Style, l
                 f"along the axis (μ_l = {end.mu:g} m/mm)", size=style.small_text, ident=f"{ident}-ecap")
 
 
-def _table(dwg, canvas: Canvas, sheet: GearSheet, at: tuple[float, float], ident: str, style: Style) -> None:
-    """The speeds of every wheel and carrier: name, teeth, n (rpm), ω (rad/s)."""
+def _table(dwg, canvas: Canvas, sheet: GearSheet, at: tuple[float, float], ident: str, style: Style,
+           given: frozenset[str] | None = None) -> None:
+    """The speeds of every wheel and carrier: name, teeth, n (rpm), ω (rad/s); with ``given``
+    (an assignment) only those links' speeds are filled in, the rest left for the student."""
     header = ["link", "z", "n, rpm", "ω, rad/s"]
-    rows = [header] + [[markup(r.name), "—" if r.teeth is None else str(r.teeth), _number(r.rpm, 6),
-                        _number(r.omega, 5)] for r in sheet.table]
+    rows = [header] + [[markup(r.name), "—" if r.teeth is None else str(r.teeth)]
+                       + ([_number(r.rpm, 6), _number(r.omega, 5)] if given is None or r.name in given else ["", ""])
+                       for r in sheet.table]
     g = dwg.g(id=f"{ident}-table", stroke=style.colour, fill="none")
     g.attribs["class"] = "value-table"
     texts = dwg.g(id=f"{ident}-table-text", fill=style.colour)
@@ -142,21 +145,27 @@ def _number(x: float, digits: int) -> str:
 
 
 def draw_gears(sheet: GearSheet, heading: Heading, *, ident: str, style: Style = Style(),
-               notes: tuple[str, ...] = ()) -> str:
-    """SVG text of the gear sheet (see the module)."""
+               notes: tuple[str, ...] = (), given: frozenset[str] | None = None) -> str:
+    """SVG text of the gear sheet (see the module). ``given`` makes it an assignment: the
+    pictures' room left empty, the table's speeds filled in only for those links, the scales of
+    the pictures left to the student."""
     x0, y0, x1, y1 = bounds(_coords(sheet))
     box = (x0, y0 - NOTE_ROOM_MM, x1, y1)
     f = choose_format(box[2] - box[0], box[3] - box[1]) or FORMATS[2]
     scales = (f"μ_l = {sheet.mu_l:g} m/mm, μ_V = {sheet.mu_v:g} (m/s)/mm, h = {sheet.h:g} mm, "
-              f"μ_ω = {sheet.mu_omega:.4g} (rad/s)/mm")
+              f"μ_ω = {sheet.mu_omega:.4g} (rad/s)/mm") if given is None else \
+        f"μ_l = {sheet.mu_l:g} m/mm (scheme); the pictures' scales: the student's"
     dwg, canvas = new_sheet(f, box, ident=ident, style=style,
                             block=TitleBlock(heading.mechanism, heading.sheet, heading.position, scales))
+    if given is not None:
+        dwg.attribs["data-sheet"] = "assignment"
     labels = dwg.g(id=f"{ident}-labels", fill=style.colour)
     _side_view(dwg, canvas, sheet, ident, style, labels)
-    _velocity_picture(dwg, canvas, sheet, ident, style, labels)
-    _omega_picture(dwg, canvas, sheet, ident, style, labels)
+    if given is None:
+        _velocity_picture(dwg, canvas, sheet, ident, style, labels)
+        _omega_picture(dwg, canvas, sheet, ident, style, labels)
     _end_view(dwg, canvas, sheet, ident, style, labels)
-    _table(dwg, canvas, sheet, _table_at(sheet), ident, style)
+    _table(dwg, canvas, sheet, _table_at(sheet), ident, style, given)
     dwg.add(labels)
     if notes:
         note_lines(canvas, dwg.add(dwg.g(id=f"{ident}-notes")), notes, style)

@@ -33,7 +33,10 @@ command line.
 
 from __future__ import annotations
 
+from .asked import KINDS, Asked, asked, kind_of
+from .assignment import assignment_svg, variant_asked
 from .draws import random_variants
+from .moodle import DEFAULT_TOLERANCE, cloze_field, moodle_xml, parse_tolerance
 from .solving import group_margins, solve_variant, variant_data, variant_scene, worst_sine
 from .toml_text import to_toml
 from .variants import (ANGLE_STEP_DEG, LENGTH_SPREAD, MARGIN_SIN, MAX_TRIES, MAX_VARIANTS,
@@ -43,4 +46,5 @@ from .writing import INDEX, VARIANTS, Progress, write_handout
 __all__ = ["MARGIN_SIN", "LENGTH_SPREAD", "ANGLE_STEP_DEG", "SPEED_SERIES", "MAX_VARIANTS", "MAX_TRIES",
            "Variant", "Handout", "Drawn", "read_variants", "read_base", "random_variants", "variant_scene",
            "solve_variant", "write_handout", "Progress", "to_toml", "SPEED_RANGE", "INDEX", "VARIANTS",
-           "margin_text", "variant_data", "worst_sine", "group_margins"]
+           "margin_text", "variant_data", "worst_sine", "group_margins", "KINDS", "Asked", "asked", "kind_of",
+           "assignment_svg", "variant_asked", "DEFAULT_TOLERANCE", "cloze_field", "moodle_xml", "parse_tolerance"]

@@ -9,12 +9,14 @@ drawing or the command line.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from pathlib import Path
 from typing import Callable
 
 import numpy as np
 
 from ..errors import SceneError
+from ..gears.geometry import MIN_TEETH
 from ..pipeline import render
 from ..scene import parse_scene
 from .solving import VariantError, group_margins, short_of, solve_variant
@@ -41,6 +43,8 @@ def _speeds(base: float) -> tuple[float, ...]:
 
 def _draw(h: Handout, rng: np.random.Generator, number: int) -> Variant:
     """One random variant (see :mod:`plans.handout`); the draws are made in a fixed order."""
+    if h.train:
+        return _draw_train(h, rng, number)
     base_lengths = h.base_data.get("lengths", {})
     lengths = {n: _round3(float(x) * rng.uniform(1 - LENGTH_SPREAD, 1 + LENGTH_SPREAD))
                for n, x in base_lengths.items()}
@@ -49,10 +53,48 @@ def _draw(h: Handout, rng: np.random.Generator, number: int) -> Variant:
     steps = int(round(360.0 / ANGLE_STEP_DEG))
     angle = float(rng.integers(0, steps)) * ANGLE_STEP_DEG
     rotary = h.angular and not _is_coupler(h)
-    values = (angle,) if rotary else None
+    values = (angle,) if rotary and h.kind != "dynamics" else None   # a machine's cycle has its own positions
     speeds = _speeds(float(drive.get(speed_key, 0.0)))
     speed = speeds[int(rng.integers(0, len(speeds)))]
     return Variant(number=number, lengths=lengths, values=values, speed=speed)
+
+
+def _planet_wheels(wheels: dict, carrier: str) -> set[str]:
+    """The wheels of ``carrier``'s planets: those on it, and those on their shafts."""
+    on = {n for n, w in wheels.items() if w.get("on") == carrier}
+    return on | {n for n, w in wheels.items() if w.get("shaft") in on}
+
+
+def _draw_train(h: Handout, rng: np.random.Generator, number: int) -> Variant:
+    """A gear train's random variant: every wheel's teeth × U(1 − spread, 1 + spread), rounded,
+    an external wheel at least MIN_TEETH (no undercut); then, carrier by carrier, each central
+    wheel of a later mesh with the carrier's planets takes the teeth that close the coaxial
+    condition on the first mesh's arm (a draw where no whole number does is refused by the
+    train and drawn again); the input speeds from the series within SPEED_RANGE × the base's.
+    The assembly and neighbourhood conditions are the train's own refusals."""
+    gears = h.base_data["gears"]
+    wheels = gears["wheels"]
+    teeth = {}
+    for name, w in wheels.items():
+        z = int(round(int(w["teeth"]) * rng.uniform(1 - LENGTH_SPREAD, 1 + LENGTH_SPREAD)))
+        teeth[name] = max(z, MIN_TEETH) if not w.get("internal") else z
+    for carrier in gears.get("carriers", []):
+        planets = _planet_wheels(wheels, carrier)
+        arm = None
+        for a, b in gears.get("meshes", []):
+            for planet, central in ((a, b), (b, a)):
+                if planet not in planets or central in planets:
+                    continue
+                mp, mc = float(wheels[planet].get("module", 1.0)), float(wheels[central].get("module", 1.0))
+                ring = bool(wheels[central].get("internal"))
+                if arm is None:
+                    arm = (mc * teeth[central] + (-1 if ring else 1) * mp * teeth[planet]) / 2.0
+                else:
+                    z = (2.0 * arm + (1 if ring else -1) * mp * teeth[planet]) / mc
+                    teeth[central] = int(round(z)) if abs(z - round(z)) < 1e-9 else max(int(z), 1)
+    inputs = {str(n): speed for n, base in gears.get("input", {}).items()
+              for speeds in [_speeds(float(base))] for speed in [speeds[int(rng.integers(0, len(speeds)))]]}
+    return Variant(number=number, teeth=teeth, inputs=inputs)
 
 
 #: What each cause of a refused draw says (see :func:`_none_works`).
@@ -94,8 +136,7 @@ def random_variants(path: str | Path, count: int, seed: int, *, margin: float = 
     solved variants."""
     h = read_base(path)
     margins = group_margins(render(parse_scene(h.base_data, file=str(h.base))), margin)
-    h = Handout(base=h.base, base_text=h.base_text, base_data=h.base_data, variants=tuple(Variant(k + 1)
-                for k in range(count)), title=h.title, seed=seed, margin=margin, margins=margins)
+    h = replace(h, variants=tuple(Variant(k + 1) for k in range(count)), seed=seed, margin=margin, margins=margins)
     rng = np.random.default_rng(seed)
     drawn: list[Drawn] = []
     redraws = 0
@@ -121,5 +162,4 @@ def random_variants(path: str | Path, count: int, seed: int, *, margin: float = 
         if progress:
             progress(number, drawn[-1].name)
     variants = tuple(d.variant for d in drawn)
-    return Handout(base=h.base, base_text=h.base_text, base_data=h.base_data, variants=variants, title=h.title,
-                   seed=seed, margin=margin, margins=margins, redraws=redraws), drawn
+    return replace(h, variants=variants, redraws=redraws), drawn

@@ -9,7 +9,7 @@ as the sheet is). The sheets are ``<img>`` of the SVG files beside it (relative 
 folder can be moved); the text holds no date or absolute path: the same handout gives the same
 bytes.
 
-Knows :mod:`.variants` (the handout, its solved variants, the margins' wording) and the
+Knows :mod:`.asked` (an asked quantity), :mod:`.variants` (the handout, its solved variants, the margins' wording) and the
 export's sheet size; must not import the solving, the random draws, the writing or the command
 line.
 """
@@ -21,6 +21,7 @@ import json
 from typing import Sequence
 
 from ..export import sheet_size_mm
+from .asked import Asked, symbol_html
 from .variants import Drawn, Handout, margin_text
 
 __all__ = ["index_html", "CSS"]
@@ -94,19 +95,64 @@ def _values_table(report: dict, angular: bool, drive: str) -> str:
     return "<table>\n" + "\n".join(rows) + "\n</table>"
 
 
-def index_html(h: Handout, drawn: Sequence[Drawn], *, margin: float | None = None) -> str:
-    """The index page's text (see the module docstring)."""
-    pos_key, speed_key, rate_key = h.keys
+def _asked_table(asked: Sequence[Asked]) -> str:
+    """What the assignment asks, with the key's exact values."""
+    rows = ["<tr><th>asked</th><th>value</th><th>unit</th><th>what</th></tr>"]
+    rows += [f'<tr><td>{symbol_html(a.symbol)}</td><td class="n">{a.value:.6g}</td><td>{_e(a.unit)}</td>'
+             f"<td>{_e(a.what)}</td></tr>" for a in asked]
+    return "<table>\n" + "\n".join(rows) + "\n</table>"
+
+
+def _train_rows(h: Handout, drawn: Sequence[Drawn]) -> tuple[str, list[str]]:
+    """A gear train's cover table: the head (every wheel's teeth, the inputs' speeds) and a row
+    of cells a variant."""
+    gears = h.base_data["gears"]
+    wheels, inputs = list(gears["wheels"]), list(gears.get("input", {}))
+    head = "".join(f"<th>z<sub>{_e(n)}</sub></th>" for n in wheels) + \
+        "".join(f"<th>n<sub>{_e(n)}</sub>, rpm</th>" for n in inputs)
+    rows = []
+    for d in drawn:
+        g = d.scene.gears
+        speeds = dict(g.inputs)
+        rows.append("".join(f'<td class="n">{g.wheel(n).teeth}</td>' for n in wheels)
+                    + "".join(f'<td class="n">{speeds[n]:g}</td>' for n in inputs))
+    return head, rows
+
+
+def index_html(h: Handout, drawn: Sequence[Drawn], *, margin: float | None = None,
+               asked: Sequence[Sequence[Asked]] = ()) -> str:
+    """The index page's text (see the module docstring); ``asked``: what each variant's
+    assignment asks, with its key's values (listed first on its key's page)."""
+    if h.train:
+        return _page(h, drawn, margin, asked, *_train_rows(h, drawn))
     drive = str(h.base_data["drive"]["link"])
     sym = (f"φ<sub>{_e(drive)}</sub>, °", f"ω<sub>{_e(drive)}</sub>, rad/s", f"ε<sub>{_e(drive)}</sub>, rad/s²") \
         if h.angular else ("s, m", "v, m/s", "a, m/s²")
     names = list(h.base_data.get("lengths", {}))
+    head = "".join(f"<th>{_e(n)}, m</th>" for n in names) + "".join(f"<th>{s}</th>" for s in sym)
+    rows = []
+    for d in drawn:
+        dv = d.scene.drive
+        cells = "".join(f'<td class="n">{_length(d, n, h):g}</td>' for n in names)
+        rows.append(cells + f'<td class="n">{", ".join(f"{x:g}" for x in dv.values)}</td>'
+                    f'<td class="n">{dv.speed:g}</td><td class="n">{dv.rate:g}</td>')
+    return _page(h, drawn, margin, asked, head, rows)
+
+
+def _page(h: Handout, drawn: Sequence[Drawn], margin: float | None, asked: Sequence[Sequence[Asked]], head: str,
+          rows: list[str]) -> str:
+    drive = "" if h.train else str(h.base_data["drive"]["link"])
     out = ["<!DOCTYPE html>", '<html lang="en">', "<head>", '<meta charset="utf-8">',
            f"<title>{_e(h.title)} — handout, {len(drawn)} variants</title>", f"<style>\n{CSS}</style>", "</head>",
            "<body>", '<section class="cover">', f"<h1>{_e(h.title)}: {len(drawn)} variants</h1>",
            f"<p>Base scene: <code>{_e(h.base.name)}</code> (copied beside this page); the variants: "
            f'<a href="variants.toml">variants.toml</a>.</p>']
-    if h.seed is not None:
+    if h.seed is not None and h.train:
+        out.append(f"<p>Drawn at random with seed {h.seed}: each wheel's teeth within ±20 % of the base's (an "
+                   "external wheel at least 17: none undercut), a central wheel's teeth closing the coaxial condition "
+                   "of its carrier, the input speeds from a standard series; every variant meets the train's "
+                   "coaxial, assembly and neighbourhood conditions.</p>")
+    elif h.seed is not None:
         out.append(f"<p>Drawn at random with seed {h.seed}: each length within ±20 % of the base's, the angle over "
                    f"the turn, ω from a standard series; every variant assembles and every asked position keeps a "
                    f"margin from singular positions: |condition| ≥ {margin:g} in every group whose condition is a "
@@ -115,15 +161,8 @@ def index_html(h: Handout, drawn: Sequence[Drawn], *, margin: float | None = Non
                    f"Here: {_e(margin_text(h))}.</p>")
     out.append("<p>Printing (A4): the assignments come first, one a page; then each variant's answer key: its "
                "values, then one page a sheet.</p>")
-    head = "".join(f"<th>{_e(n)}, m</th>" for n in names) + "".join(f"<th>{s}</th>" for s in sym)
     out += ["<table>", f"<tr><th>variant</th>{head}<th>assignment</th><th>answer key</th></tr>"]
-    for d in drawn:
-        data = d.scene
-        lengths = {n: v for n, v in zip(names, (_length(d, n, h) for n in names))}
-        dv = data.drive
-        cells = "".join(f'<td class="n">{v:g}</td>' for v in lengths.values())
-        cells += (f'<td class="n">{", ".join(f"{x:g}" for x in dv.values)}</td><td class="n">{dv.speed:g}</td>'
-                  f'<td class="n">{dv.rate:g}</td>')
+    for d, cells in zip(drawn, rows):
         n = _e(d.name)
         out.append(f'<tr><td><a href="#{n}">{n}</a></td>{cells}<td><a href="{n}/{n}-assignment.pdf">PDF</a></td>'
                    f'<td><a href="#{n}-key">values</a>, <a href="{n}/{n}.json">JSON</a></td></tr>')
@@ -132,10 +171,12 @@ def index_html(h: Handout, drawn: Sequence[Drawn], *, margin: float | None = Non
         n = _e(d.name)
         out += [f'<section class="page wide assignment" id="{n}">', f"<h2>{_e(d.name)} — assignment</h2>",
                 f'<img class="sheet" src="{n}/{n}-assignment.svg" alt="{n}: assignment sheet">', "</section>"]
-    for d in drawn:
+    for k, d in enumerate(drawn):
         n = _e(d.name)
+        report = json.loads(d.sheets.json)
         out += [f'<section class="page tall key" id="{n}-key">', f"<h2>{_e(d.name)} — answer key: values</h2>",
-                _values_table(json.loads(d.sheets.json), h.angular, drive),
+                _asked_table(asked[k]) if k < len(asked) else "",
+                _values_table(report, h.angular, drive) if report.get("positions") else "",
                 f'<p>Files: <a href="{n}/{n}.json">{n}.json</a>, <a href="{n}/{n}.toml">{n}.toml</a> (its scene).</p>',
                 "</section>"]
         for sheet in d.sheets:

@@ -35,6 +35,13 @@ class VariantError(SceneError):
 def variant_data(h: Handout, v: Variant) -> dict:
     """The base scene's TOML data with the variant's lengths and drive values."""
     data = copy.deepcopy(dict(h.base_data))
+    if h.train:
+        wheels = data["gears"]["wheels"]
+        for name, z in v.teeth.items():
+            wheels[name] = {**wheels[name], "teeth": z}
+        if v.inputs:
+            data["gears"]["input"] = {**data["gears"].get("input", {}), **v.inputs}
+        return data
     if v.lengths:
         data["lengths"] = {**data.get("lengths", {}), **v.lengths}
     drive = data["drive"]
@@ -56,7 +63,8 @@ def variant_scene(h: Handout, v: Variant) -> Scene:
         return parse_scene(variant_data(h, v), file=str(h.base))
     except SceneError as exc:
         sub = exc.key or ""
-        for table, alias in (("drive.", ""), ("lengths.", "lengths.")):
+        for table, alias in (("drive.", ""), ("lengths.", "lengths."), ("gears.wheels.", "teeth."),
+                         ("gears.input.", "input.")):
             if sub.startswith(table):
                 sub = alias + sub[len(table):]
         raise VariantError(f"{exc.message} ({h.name(v)})", file=file, key=f"{key}.{sub}" if sub else key,
@@ -83,17 +91,24 @@ def solve_variant(h: Handout, v: Variant) -> Drawn:
 
 def worst_sine(sheets: Sheets) -> float:
     """The smallest |condition figure| over every group and position (1 with no group)."""
+    if sheets.motion is None:
+        return 1.0
     return min((float(np.min(np.abs(s))) for s in sheets.motion.sines.values()), default=1.0)
 
 
 def group_margins(base: Sheets, margin: float = MARGIN_SIN) -> dict[str, float]:
     """The margin each group of the base scene must keep: ``margin`` for every group, whose
-    figures all mean the same closeness to a singular position (plans.kinematics.figure)."""
-    return {g: margin for g in base.motion.sines}
+    figures all mean the same closeness to a singular position (plans.kinematics.figure); none
+    for a gear train (its conditions are kept exactly, see :func:`short_of`)."""
+    return {} if base.motion is None else {g: margin for g in base.motion.sines}
 
 
 def short_of(sheets: Sheets, margins: Mapping[str, float]) -> str:
-    """Why ``sheets`` misses the margins ("" when it keeps them all)."""
+    """Why ``sheets`` misses the margins ("" when it keeps them all); a gear train misses them
+    when one of its wheels is undercut (the coaxial, assembly and neighbourhood conditions are
+    refused by the train itself)."""
+    if sheets.motion is None:
+        return "; ".join(sheets.train.geometry.warnings) if sheets.train and sheets.train.geometry else ""
     for g, s in sheets.motion.sines.items():
         worst = float(np.min(np.abs(s)))
         if worst < margins.get(g, MARGIN_SIN):

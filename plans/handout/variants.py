@@ -17,6 +17,7 @@ from ..errors import SceneError
 from ..pipeline import Sheets
 from ..scene import Scene, as_float, parse_scene, parse_toml, read_text
 from ..scene.checks import SHOW
+from .asked import kind_of
 
 __all__ = ["MARGIN_SIN", "LENGTH_SPREAD", "ANGLE_STEP_DEG", "SPEED_SERIES", "SPEED_RANGE",
            "MAX_VARIANTS", "MAX_TRIES", "Variant", "Handout", "Drawn", "read_base", "read_variants", "margin_text"]
@@ -52,6 +53,8 @@ class Variant:
     values: tuple[float, ...] | None = None
     speed: float | None = None
     rate: float | None = None
+    teeth: Mapping[str, int] = field(default_factory=dict)     # a gear train's: wheel → teeth
+    inputs: Mapping[str, float] = field(default_factory=dict)  # a gear train's: link → rpm
 
 
 @dataclass(frozen=True)
@@ -69,10 +72,17 @@ class Handout:
     margin: float | None = None
     margins: Mapping[str, float] = field(default_factory=dict)
     redraws: int = 0
+    kind: str = "kinematics"        # what the assignment asks (plans.handout.asked.KINDS)
+
+    @property
+    def train(self) -> bool:
+        """Whether the base is a gear train alone (its variants set teeth and input speeds)."""
+        return self.kind == "gears"
 
     @property
     def angular(self) -> bool:
-        return "displacement" not in self.base_data["drive"] and "velocity" not in self.base_data["drive"]
+        drive = self.base_data.get("drive", {})
+        return "displacement" not in drive and "velocity" not in drive
 
     @property
     def keys(self) -> tuple[str, str, str]:
@@ -113,7 +123,11 @@ def read_base(path: str | Path, *, cited: tuple[str, str] | None = None) -> Hand
         raise SceneError("is a variants file, not a scene; --random draws variants around a scene: give its base "
                          f"scene ({data.get('base', '?')}) instead", file=str(path), key="--random")
     scene = parse_scene(data, file=str(path))
-    return Handout(base=path, base_text=text, base_data=data, variants=(), title=scene.title)
+    try:
+        kind = kind_of(scene)
+    except SceneError as exc:
+        raise SceneError(exc.message, file=str(path), key=exc.key) from None
+    return Handout(base=path, base_text=text, base_data=data, variants=(), title=scene.title, kind=kind)
 
 
 def read_variants(path: str | Path) -> Handout:
@@ -152,7 +166,7 @@ def read_variants(path: str | Path) -> Handout:
         raise SceneError(f"{len(items)} variants; at most {MAX_VARIANTS}", file=f, key="variant")
     variants = tuple(_variant(item, k, base, f) for k, item in enumerate(items))
     return Handout(base=base_path, base_text=base.base_text, base_data=base.base_data, variants=variants,
-                   title=title, source=path)
+                   title=title, source=path, kind=base.kind)
 
 
 def _number(value: Any, key: str, file: str, *, positive: bool = False, unit: str = "") -> float:
@@ -171,6 +185,8 @@ def _variant(item: Any, k: int, base: Handout, file: str) -> Variant:
     key = f"variant[{k}]"
     if not isinstance(item, Mapping):
         raise SceneError("each [[variant]] entry is a table", file=file, key=key)
+    if base.train:
+        return _train_variant(item, k, base, file)
     pos, speed, rate = base.keys
     allowed = ("lengths", pos, speed, rate)
     for name in item:
@@ -200,6 +216,34 @@ def _variant(item: Any, k: int, base: Handout, file: str) -> Variant:
     return Variant(number=k + 1, lengths=lengths, values=values,
                    speed=_number(item[speed], f"{key}.{speed}", file) if speed in item else None,
                    rate=_number(item[rate], f"{key}.{rate}", file) if rate in item else None)
+
+
+def _train_variant(item: Mapping[str, Any], k: int, base: Handout, file: str) -> Variant:
+    """A gear train's variant: ``teeth = { "1" = 20 }`` (any of the base's wheels) and
+    ``input = { "1" = 1450.0 }`` (the base's input links, rpm)."""
+    key = f"variant[{k}]"
+    for name in item:
+        if name not in ("teeth", "input"):
+            raise SceneError(f"unknown key {name!r}; a gear train's variant has teeth and input", file=file,
+                             key=f"{key}.{name}")
+    gears = base.base_data["gears"]
+    wheels, inputs = gears.get("wheels", {}), gears.get("input", {})
+    teeth, speeds = item.get("teeth", {}), item.get("input", {})
+    for table, given, known, what in (("teeth", teeth, wheels, "[gears.wheels]"),
+                                      ("input", speeds, inputs, "[gears.input]")):
+        if not isinstance(given, Mapping):
+            raise SceneError(f"{table} is a table of the base's {what}, e.g. {table} = {{ \"1\" = 20 }}", file=file,
+                             key=f"{key}.{table}")
+        for name in given:
+            if name not in known:
+                raise SceneError(f"unknown {'wheel' if table == 'teeth' else 'input'} {name!r}; the base scene's "
+                                 f"{what} has {', '.join(known) or 'none'}", file=file, key=f"{key}.{table}.{name}")
+    for name, z in teeth.items():
+        if isinstance(z, bool) or not isinstance(z, int) or z < 1:
+            raise SceneError(f"teeth are a positive whole number, got {SHOW.repr(z)}", file=file,
+                             key=f"{key}.teeth.{name}")
+    return Variant(number=k + 1, teeth={str(n): int(z) for n, z in teeth.items()},
+                   inputs={str(n): _number(v, f"{key}.input.{n}", file) for n, v in speeds.items()})
 
 
 def margin_text(h: Handout) -> str:

@@ -2,9 +2,8 @@
 key, its scene file), ``variants.toml``, the base scene's copy and ``index.html``; and the
 progress bar the command line shows meanwhile.
 
-Knows :mod:`.variants`, :mod:`.solving`, :mod:`.toml_text`, :mod:`.index`, the export and the
-output (the assignment's drawing and scheme are imported where they are drawn); must not import
-the random draws or the command line.
+Knows :mod:`.variants`, :mod:`.solving`, :mod:`.toml_text`, :mod:`.assignment`, :mod:`.index`,
+the export and the output; must not import the random draws or the command line.
 """
 
 from __future__ import annotations
@@ -16,6 +15,7 @@ from typing import Callable, Sequence, TextIO
 
 from ..export import convert
 from ..output import check_folder, refuse_inputs, write_files
+from .assignment import assignment_svg, variant_asked
 from .index import index_html
 from .solving import variant_data
 from .toml_text import to_toml, toml_value
@@ -38,6 +38,11 @@ def _variants_file(h: Handout, base_name: str) -> str:
     for v in h.variants:
         data = variant_data(h, v)
         lines += ["", "[[variant]]"]
+        if h.train:
+            gears = data["gears"]
+            lines += [f"teeth = {toml_value({n: w['teeth'] for n, w in gears['wheels'].items()})}",
+                      f"input = {toml_value(dict(gears.get('input', {})))}"]
+            continue
         if data.get("lengths"):
             lines.append(f"lengths = {toml_value(data['lengths'])}")
         lines += [f"{key} = {toml_value(data['drive'][key])}" for key in h.keys if key in data["drive"]]
@@ -85,8 +90,6 @@ def write_handout(h: Handout, drawn: Sequence[Drawn], out: str | Path, *,
     """Write every variant's folder, ``variants.toml``, the base scene's copy and ``index.html``
     into ``out``. Each folder is written all or nothing (:meth:`plans.Sheets.save`); an error
     removes what this call wrote before it. Returns the paths written."""
-    from ..drawing.assignment import draw_assignment   # the drawing is needed only here
-
     out = Path(out)
     check_folder(out)
     base_name = _base_name(h)
@@ -94,10 +97,11 @@ def write_handout(h: Handout, drawn: Sequence[Drawn], out: str | Path, *,
     refuse_inputs([out / n for n in (VARIANTS, base_name, INDEX)]
                   + [out / d.name / f"{d.name}{ext}" for d in drawn for ext in (".toml", ".json")], inputs)
     written: list[Path] = []
+    asked = [variant_asked(d) for d in drawn]
     try:
         for k, d in enumerate(drawn, 1):
             folder = out / d.name
-            svg = _assignment(h, d, draw_assignment)
+            svg = assignment_svg(h, d, asked[k - 1])
             extra = {f"{d.name}-assignment.svg": svg}
             written += d.sheets.save(folder, formats="svg,pdf")
             written += write_files({**convert(extra, ("svg", "pdf")),
@@ -105,7 +109,7 @@ def write_handout(h: Handout, drawn: Sequence[Drawn], out: str | Path, *,
             if progress:
                 progress(k, d.name)
         top = {VARIANTS: _variants_file(h, base_name), base_name: h.base_text,
-               INDEX: index_html(h, drawn, margin=h.margin)}
+               INDEX: index_html(h, drawn, margin=h.margin, asked=asked)}
         written += write_files(top, out)
     except BaseException:
         for p in reversed(written):
@@ -120,19 +124,6 @@ def write_handout(h: Handout, drawn: Sequence[Drawn], out: str | Path, *,
                 pass
         raise
     return written
-
-
-def _assignment(h: Handout, d: Drawn, draw: Callable[..., str]) -> str:
-    """The assignment sheet's SVG: the scheme at the variant's first position (constructed from
-    the solved motion), its data, the points and links to find."""
-    from ..constructions.scheme import scheme
-
-    motion = d.sheets.motion
-    mech = motion.mechanism
-    return draw(lambda mu: scheme(motion, 0, mu), d.scene, variant=d.name.replace("variant-", "variant "),
-                points=[p for p in mech.sketch if motion.carrier(p) != "0"],
-                links=[n for n in mech.moving if n != d.scene.drive.link],
-                lengths=variant_data(h, d.variant).get("lengths"))
 
 
 def _scene_file(h: Handout, d: Drawn) -> str:
