@@ -178,7 +178,7 @@ def _handout(source: str, out: str, quiet: bool, random: str | None, seed: str |
     bar.close()
     bank = None
     if moodle is not None:
-        refuse_inputs([Path(moodle)], [p for p in (h.base, h.source) if p is not None])
+        refuse_inputs([Path(moodle)], [p for p in (h.base, h.source) if p is not None], option="--moodle")
         bank = ho.moodle_xml(h, drawn, [ho.variant_asked(d) for d in drawn], tolerance=tol)
     bar = ho.Progress(len(drawn), "writing")
     ho.write_handout(h, drawn, out, progress=bar)

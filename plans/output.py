@@ -23,15 +23,15 @@ __all__ = ["write_files", "check_folder"]
 OPTION = "-o"
 
 
-def refuse_inputs(targets: Iterable[str | Path], inputs: Iterable[str | Path]) -> None:
+def refuse_inputs(targets: Iterable[str | Path], inputs: Iterable[str | Path], option: str = OPTION) -> None:
     """Refuse, before anything is written, an output path that names one of ``inputs`` (the
-    files the run read: links and ``..`` resolved)."""
+    files the run read: links and ``..`` resolved); the error names ``option``, which chose it."""
     read = [Path(p) for p in inputs]
     for target in map(Path, targets):
         clash = next((p for p in read if _same_file(p, target)), None)
         if clash is not None:
             raise OutputError(f"would overwrite the input file {clash} with an output of the same name; choose "
-                              "another -o (or rename the input)", file=str(target), key=OPTION)
+                              f"another {option} (or rename the input)", file=str(target), key=option)
 
 
 def _same_file(a: Path, b: Path) -> bool:

@@ -19,7 +19,7 @@ from ..errors import SceneError
 from ..gears.geometry import MIN_TEETH
 from ..pipeline import render
 from ..scene import parse_scene
-from .solving import VariantError, group_margins, short_of, solve_variant
+from .solving import VariantError, group_margins, short_of, solve_variant, turns_fully
 from .variants import (ANGLE_STEP_DEG, LENGTH_SPREAD, MARGIN_SIN, MAX_TRIES, SPEED_RANGE, SPEED_SERIES, Drawn,
                        Handout, Variant, read_base)
 
@@ -99,7 +99,7 @@ def _draw_train(h: Handout, rng: np.random.Generator, number: int) -> Variant:
 
 #: What each cause of a refused draw says (see :func:`_none_works`).
 _CAUSES = {"build": "had lengths that form no link", "assembly": "did not assemble, or were singular, at the "
-           "drawn position", "margin": "came closer to a singular position than the margin"}
+           "drawn position", "margin": "came closer to a singular position than the margin, or their crank did not turn fully"}
 
 
 def _none_works(h: Handout, causes: dict[str, list]) -> SceneError:
@@ -135,7 +135,9 @@ def random_variants(path: str | Path, count: int, seed: int, *, margin: float = 
     failed draw is drawn again (up to MAX_TRIES times a variant). Returns the handout and the
     solved variants."""
     h = read_base(path)
-    margins = group_margins(render(parse_scene(h.base_data, file=str(h.base))), margin)
+    base = render(parse_scene(h.base_data, file=str(h.base)))
+    margins = group_margins(base, margin)
+    turning = not turns_fully(base)      # a base whose crank turns fully keeps variants that do
     h = replace(h, variants=tuple(Variant(k + 1) for k in range(count)), seed=seed, margin=margin, margins=margins)
     rng = np.random.default_rng(seed)
     drawn: list[Drawn] = []
@@ -151,7 +153,7 @@ def random_variants(path: str | Path, count: int, seed: int, *, margin: float = 
                 causes.setdefault(why, [0, exc.message])[0] += 1
                 redraws += 1
                 continue
-            short = short_of(d.sheets, margins)
+            short = short_of(d.sheets, margins) or (turns_fully(d.sheets) if turning else "")
             if not short:
                 drawn.append(d)
                 break

@@ -13,12 +13,19 @@ from typing import Mapping
 import numpy as np
 
 from ..errors import PlansError, SceneError
+from ..kinematics import WARN_SIN, analyse
+from ..scene.values import DriveKind
 from ..pipeline import Sheets, render
 from ..scene import Scene, parse_scene
 from .variants import MARGIN_SIN, Drawn, Handout, Variant
 
 __all__ = ["VariantError", "variant_data", "variant_scene", "solve_variant", "worst_sine", "group_margins",
-           "short_of"]
+           "short_of", "TURN_STEP_DEG", "turns_fully"]
+
+#: A crank's variant must assemble at every multiple of this over the turn (degrees) when its
+#: base's crank turns fully (Grashof's condition, for any chain), each position at least
+#: WARN_SIN from a singular one.
+TURN_STEP_DEG = 5.0
 
 
 class VariantError(SceneError):
@@ -101,6 +108,25 @@ def group_margins(base: Sheets, margin: float = MARGIN_SIN) -> dict[str, float]:
     figures all mean the same closeness to a singular position (plans.kinematics.figure); none
     for a gear train (its conditions are kept exactly, see :func:`short_of`)."""
     return {} if base.motion is None else {g: margin for g in base.motion.sines}
+
+
+def turns_fully(sheets: Sheets) -> str:
+    """Why the crank of ``sheets`` does not turn a full revolution ("" when it does, and for
+    any other drive): the mechanism solved at every TURN_STEP_DEG from the first position must
+    assemble and keep |condition| ≥ WARN_SIN."""
+    m = sheets.motion
+    if m is None or m.mechanism.drive.kind != DriveKind.ROTARY:
+        return ""
+    angles = float(m.values[0]) + np.arange(0.0, 360.0, TURN_STEP_DEG)
+    try:
+        turn = analyse(m.mechanism, m.structure, angles, order=1)
+    except PlansError as exc:
+        return f"the crank does not turn fully: {exc}"
+    for g, s in turn.sines.items():
+        k = int(np.argmin(np.abs(s)))
+        if abs(s[k]) < WARN_SIN:
+            return f"the crank does not turn fully: group {g} comes to a dead position near {angles[k] % 360:g}°"
+    return ""
 
 
 def short_of(sheets: Sheets, margins: Mapping[str, float]) -> str:
