@@ -24,11 +24,17 @@ own scene file), ``variants.toml`` (the variants, reproducible: ``plans handout`
 same keys), a copy of the base scene and ``index.html``. Only the public API is used:
 :func:`plans.parse_scene`, :func:`plans.render`, :meth:`plans.Sheets.save`.
 
-The package: :mod:`.variants` (the data, reading a variants file), :mod:`.solving` (a variant
-solved, the margins), :mod:`.draws` (random variants), :mod:`.toml_text` (TOML writer),
-:mod:`.index` (``index.html``) and :mod:`.writing` (the output folder). Each imports only
-modules before it in this list (:mod:`.index` only :mod:`.variants`); nothing here imports the
-command line.
+Four kinds of assignment (:mod:`.asked`): a linkage's kinematics, a loaded linkage's forces,
+a gear train (its variants set ``teeth`` and ``input``, drawn keeping the coaxial, assembly and
+neighbourhood conditions and no undercut) and a machine's dynamics (the flywheel). With
+:func:`moodle_xml` a handout is also a Moodle XML question bank (:mod:`.moodle`).
+
+The package: :mod:`.asked` (what each kind asks, from a report), :mod:`.variants` (the data,
+reading a variants file), :mod:`.solving` (a variant solved, the margins), :mod:`.draws` (random
+variants), :mod:`.toml_text` (TOML writer), :mod:`.assignment` (the assignment sheet, its data
+and task), :mod:`.index` (``index.html``), :mod:`.moodle` (the question bank) and
+:mod:`.writing` (the output folder). Each imports only modules before it in this list
+(:mod:`.index` only :mod:`.asked` and :mod:`.variants`); nothing here imports the command line.
 """
 
 from __future__ import annotations
