@@ -68,3 +68,32 @@ def test_no_aligned_text_with_subscripts_in_the_gallery(rendered):
             if t.get("text-anchor") in ("middle", "end") and len(list(t.iter(f"{SVG}tspan"))) > 1:
                 found.append(f"{svg.name}: {''.join(t.itertext())}")
     assert not found, found[:5]
+
+
+def _aligned_runs(folder) -> list[str]:
+    found = []
+    for svg in sorted(folder.rglob("*.svg")):
+        root = ET.fromstring(svg.read_text(encoding="utf-8"))
+        for t in root.iter(f"{SVG}text"):
+            if t.get("text-anchor") in ("middle", "end") and len(list(t.iter(f"{SVG}tspan"))) > 1:
+                found.append(f"{svg.name}: {''.join(t.itertext())}")
+    return found
+
+
+def test_no_aligned_text_with_subscripts_on_gear_and_handout_sheets(tmp_path):
+    """The same rule on the sheets outside the linkage gallery: every gear example's sheets and
+    the assignment sheets of each kind of handout (kinematics, forces, gears, dynamics)."""
+    from pathlib import Path
+
+    from plans.cli import main
+
+    root = Path(__file__).resolve().parent.parent / "examples"
+    gears = sorted((root / "gears").glob("*.toml"))
+    assert main(["render", *map(str, gears), "-o", str(tmp_path / "gears"), "-q"]) == 0
+    for k, base in enumerate(("four_bar.toml", "six_link_press_forces.toml", "gears/planetary_1_21.toml",
+                              "six_link_press_flywheel.toml")):
+        assert main(["handout", str(root / base), "--random", "1", "-o", str(tmp_path / f"h{k}"), "-q"]) == 0
+    sheets = list(tmp_path.rglob("*.svg"))
+    assert len(sheets) > 20 and sum(p.name.endswith("-assignment.svg") for p in sheets) == 4
+    found = _aligned_runs(tmp_path)
+    assert not found, found[:5]
