@@ -186,7 +186,9 @@ def _handout(source: str, out: str, quiet: bool, random: str | None, seed: str |
     if bank is not None:
         write_files({Path(moodle).name: bank}, Path(moodle).parent)
     if not quiet:
-        extra = f", seed {h.seed}, margins |condition| ≥ {ho.margin_text(h)} ({h.redraws} draw{'s' if h.redraws != 1 else ''} rejected and redrawn)" if h.seed is not None else ""
+        kept = "the train's conditions kept" if h.train else f"margins |condition| ≥ {ho.margin_text(h)}"
+        extra = f", seed {h.seed}, {kept} ({h.redraws} draw{'s' if h.redraws != 1 else ''} rejected and redrawn)" \
+            if h.seed is not None else ""
         print(f"wrote {len(drawn)} variants of {h.base.name}{extra} to {out}/ (open {out}/index.html)"
               + (f"; the Moodle question bank to {moodle} (tolerance ±{tol * 100:g} %)" if bank is not None else ""))
     for d in drawn:

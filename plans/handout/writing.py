@@ -32,8 +32,10 @@ def _variants_file(h: Handout, base_name: str) -> str:
     (``plans handout`` on it, beside the base scene's copy, gives the same answer keys)."""
     lines = [f"# plans handout: {len(h.variants)} variants of {h.base.name}"]
     if h.seed is not None:
-        lines.append(f"# drawn with --random {len(h.variants)} --seed {h.seed}: lengths ±{LENGTH_SPREAD:.0%}; every "
-                     f"asked position keeps |condition| ≥ the margin of each group: {margin_text(h)}")
+        lines.append(f"# drawn with --random {len(h.variants)} --seed {h.seed}: " + (
+            f"teeth ±{LENGTH_SPREAD:.0%}, none undercut; the coaxial, assembly and neighbourhood conditions kept"
+            if h.train else f"lengths ±{LENGTH_SPREAD:.0%}; every asked position keeps |condition| ≥ the margin of "
+            f"each group: {margin_text(h)}"))
     lines += ["", f"base = {toml_value(base_name)}", f"title = {toml_value(h.title)}"]
     for v in h.variants:
         data = variant_data(h, v)
