@@ -248,3 +248,18 @@ def test_a_cycle_base_gives_keys_with_the_cycle_sheets(tmp_path):
     assert {"positions", "diagrams", "velocities"} <= names
     assert {p.name for p in folder.glob("*.svg")} == {s.file for s in direct} | {"variant-01-assignment.svg"}
     assert main(["check", *(str(folder / s.file) for s in direct)]) == 0
+
+
+def test_no_output_of_a_variants_folder_writes_over_an_input(tmp_path, capsys):
+    """The variants file sits where the first variant's velocity plan (PDF) would go: refused in
+    one line before anything is written; the file is unchanged."""
+    (tmp_path / "variant-01").mkdir()
+    mine = tmp_path / "variant-01" / "variant-01-velocity.pdf"
+    text = f'# my class\nbase = "{PRESS.as_posix()}"\n[[variant]]\nangle = [30.0]\n'.encode()
+    mine.write_bytes(text)
+    assert main(["handout", str(mine), "-o", str(tmp_path)]) == 2
+    err = capsys.readouterr().err
+    assert "would overwrite the input file" in err and err.count("\n") == 1
+    assert mine.read_bytes() == text
+    assert sorted(str(p.relative_to(tmp_path)) for p in tmp_path.rglob("*")) == [
+        "variant-01", "variant-01/variant-01-velocity.pdf"]

@@ -13,7 +13,7 @@ import time
 from pathlib import Path
 from typing import Callable, Sequence, TextIO
 
-from ..export import convert
+from ..export import convert, output_names
 from ..output import check_folder, refuse_inputs, write_files
 from .assignment import assignment_svg, variant_asked
 from .index import index_html
@@ -49,6 +49,12 @@ def _variants_file(h: Handout, base_name: str) -> str:
             lines.append(f"lengths = {toml_value(data['lengths'])}")
         lines += [f"{key} = {toml_value(data['drive'][key])}" for key in h.keys if key in data["drive"]]
     return "\n".join(lines) + "\n"
+
+
+def _folder_names(d: Drawn) -> list[str]:
+    """Every file name of variant ``d``'s folder: the key's sheets (SVG, PDF), its JSON, the
+    assignment (SVG, PDF) and the variant's scene file (none may write over an input)."""
+    return output_names({**d.sheets.files, f"{d.name}-assignment.svg": "", f"{d.name}.toml": ""}, ("svg", "pdf"))
 
 
 def _base_name(h: Handout) -> str:
@@ -97,7 +103,7 @@ def write_handout(h: Handout, drawn: Sequence[Drawn], out: str | Path, *,
     base_name = _base_name(h)
     inputs = [p for p in (h.base, h.source) if p is not None]
     refuse_inputs([out / n for n in (VARIANTS, base_name, INDEX)]
-                  + [out / d.name / f"{d.name}{ext}" for d in drawn for ext in (".toml", ".json")], inputs)
+                  + [out / d.name / n for d in drawn for n in _folder_names(d)], inputs)
     written: list[Path] = []
     asked = [variant_asked(d) for d in drawn]
     try:
