@@ -46,7 +46,9 @@ any plan (length × μF = the force in N, direction, ends named alike by their v
 coincide — so a whole reaction ends where its two components do, and a reaction between the
 group's links joins the vertices it must); besides, its sides (``data-role="side"``) must
 sum to zero: drawn, within ``n · 2√2 · precision`` mm for n sides, and as recorded (value ×
-direction), within :data:`FORCE_CLOSURE_REL` of Σ values. Zhukovsky's lever
+direction), within :data:`FORCE_CLOSURE_REL` of Σ values — except in an enlarged detail of a
+run of short sides (``data-detail``: an open run of the polygon's sides, measured and named
+alike but not closed). Zhukovsky's lever
 (``data-plan="lever"``, μ = μF, the pole's paper position in ``data-pole``): every force is
 measured as a vector; its arm about the pole — the distance from the pole to the line
 through its drawn tail in its recorded direction — must equal its ``data-h`` within
@@ -258,7 +260,7 @@ def _check_group(report: SvgReport, g: ET.Element, lines: list[ET.Element]) -> N
             ends.append((f"{q} {which}", pt, absolute, name, label))
     if plan != BOUND:
         _closures(report, gid, ends, r + _REL)
-    if plan == FORCE:
+    if plan == FORCE and g.get("data-detail") is None:
         _force_closure(report, gid, lines, r)
     elif plan == LEVER:
         _lever(report, g, gid, lines, r)

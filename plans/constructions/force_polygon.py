@@ -17,10 +17,11 @@ import numpy as np
 
 from ..errors import ConstructionError
 from .plan_values import EXTENSION_MM, ConstructionLine, PlanPoint
-from .scales import standard_scale
+from .scales import _series_values
 
 __all__ = ["ForceTerm", "ForceVector", "ForcePlan", "force_plan", "KINDS", "CLOSURE_REL", "FORCE_REFERENCE_MM",
-           "FORCE_PLAN_MAX_MM", "component_of"]
+           "FORCE_PLAN_MAX_MM", "component_of", "force_scale", "ForceDetail", "force_details", "SHORT_SIDE_MM",
+           "RUN_SIDE_MM", "DETAIL_REFERENCE_MM", "TWO_FORCE_OFFSET_MM"]
 
 #: The kinds of force a term may be.
 KINDS = ("gravity", "inertia", "external", "reaction", "reaction_n", "reaction_t", "balance")
@@ -28,10 +29,24 @@ KINDS = ("gravity", "inertia", "external", "reaction", "reaction_n", "reaction_t
 CLOSURE_REL = 1e-9
 #: A force smaller than this fraction of the largest one is zero: not drawn, kept in the table.
 ZERO_REL = 1e-12
-#: Wanted drawn length of a plan's largest force, mm.
-FORCE_REFERENCE_MM = (60.0, 100.0)
-#: Largest width or height of a force plan, mm: two plans and their tables side by side on A3.
-FORCE_PLAN_MAX_MM = 150.0
+#: Wanted drawn length of a plan's largest force (its largest side), mm, as the reference
+#: vectors of the velocity and acceleration plans: never longer; shorter only where the
+#: series has no value in the window (the largest force 187.5–200, 375–400 or 750–800 × 10^k
+#: N: the next value down draws it 94–100 mm) or the polygon would exceed FORCE_PLAN_MAX_MM.
+FORCE_REFERENCE_MM = (100.0, 150.0)
+#: Largest width or height of a force plan, mm: one polygon of a panel on an A3 sheet.
+FORCE_PLAN_MAX_MM = 240.0
+#: A side drawn shorter than this (mm) cannot be read on the polygon: it is drawn again in an
+#: enlarged detail, or listed as negligible in the force table.
+SHORT_SIDE_MM = 2.0
+#: Consecutive sides each drawn shorter than this (mm), among them one under SHORT_SIDE_MM,
+#: form a run that gets a detail: the cluster of short sides read together.
+RUN_SIDE_MM = 10.0
+#: Wanted drawn length of the largest side of a detail, mm (never longer).
+DETAIL_REFERENCE_MM = (40.0, 60.0)
+#: A polygon of two forces (equal and opposite) draws its second force this far beside the
+#: first, parallel, so that the two arrows do not lie on one segment, mm.
+TWO_FORCE_OFFSET_MM = 4.0
 
 
 def _vec(xy, what: str) -> np.ndarray:
@@ -170,16 +185,25 @@ def force_plan(group: str, terms: Sequence[ForceTerm], *, internal: Sequence[For
     corners[-1] = 0.0                                                     # closed on the start point
     extent = float(max(np.ptp(corners[:, 0]), np.ptp(corners[:, 1]), fmax))
     if mu is None:
-        mu = standard_scale(fmax, window=window, limit=limit, extent=extent)
+        mu = force_scale(fmax, extent, window=window, limit=limit)
     elif not (mu > 0 and math.isfinite(mu)):
         raise ConstructionError(f"{what}: μF = {mu!r} is not a positive number")
     xy = corners / mu
     labels = _letters(len(drawn))
-    points = tuple(PlanPoint(labels[k], _pt(xy[k])) for k in range(len(drawn)))
+    points = [PlanPoint(labels[k], _pt(xy[k])) for k in range(len(drawn))]
     vectors: list[ForceVector] = []
     for j, k in enumerate(drawn):
         t = terms_[k]
         vectors.append(ForceVector(t.quantity, _pt(xy[j]), _pt(xy[(j + 1) % len(drawn)]), float(mags[k]), t.kind))
+    if len(drawn) == 2:
+        # two forces, equal and opposite: the second beside the first (b′ → a′), not back along it
+        d = xy[1] - xy[0]
+        off = np.array([d[1], -d[0]]) / float(np.linalg.norm(d)) * TWO_FORCE_OFFSET_MM
+        ends = [labels[1] + "′", labels[0] + "′"]
+        points += [PlanPoint(ends[0], _pt(xy[1] + off)), PlanPoint(ends[1], _pt(xy[0] + off))]
+        second = vectors[1]
+        vectors[1] = ForceVector(second.quantity, _pt(xy[1] + off), _pt(xy[0] + off), second.value, second.kind)
+    points = tuple(points)
     totals = _totals(terms_)
     sides = [terms_[k] for k in drawn]
     n = len(sides)
@@ -215,6 +239,93 @@ def force_plan(group: str, terms: Sequence[ForceTerm], *, internal: Sequence[For
             lines.append(ConstructionLine(_pt(a - EXTENSION_MM * u), _pt(b + EXTENSION_MM * u), t.quantity, group))
     return ForcePlan(group, float(mu), labels[0], points, tuple(vectors), tuple(lines), tuple(terms_), tuple(totals),
                      tuple(kept))
+
+
+def force_scale(fmax: float, extent: float, *, window: tuple[float, float] = FORCE_REFERENCE_MM,
+                limit: float = FORCE_PLAN_MAX_MM) -> float:
+    """μF (N/mm) of the series (:data:`~.scales.SERIES`) that draws the largest force ``fmax``
+    (N) nearest the middle of ``window`` (mm, log scale) and never longer than its top, while
+    the polygon's ``extent`` (N, its largest width or height) stays within ``limit`` mm; when
+    no series value draws it within the window, the one drawing it longest below the window."""
+    if not (fmax > 0 and math.isfinite(fmax)):
+        raise ConstructionError(f"largest force {fmax!r} N is not a positive number")
+    extent = max(extent, fmax)
+    mid = math.sqrt(window[0] * window[1])
+    fitting = [mu for mu in _series_values(fmax / window[1] / 10.0, extent / window[0] * 10.0)
+               if fmax / mu <= window[1] * (1 + 1e-12) and extent / mu <= limit * (1 + 1e-12)]
+    inside = [mu for mu in fitting if fmax / mu >= window[0] * (1 - 1e-12)]
+    if inside:
+        return min(inside, key=lambda mu: (abs(math.log(fmax / mu / mid)), mu))
+    return min(fitting)
+
+
+@dataclass(frozen=True)
+class ForceDetail:
+    """An enlarged detail of a run of short sides of a force plan: the sides ``first`` …
+    ``first + len(vectors) − 1`` (indices into the plan's sides) drawn again head to tail from
+    the origin at their own ``mu`` (N/mm), their ends lettered as on the polygon (``points``);
+    ``negligible``: the quantities still shorter than :data:`SHORT_SIDE_MM` here."""
+
+    mu: float
+    first: int
+    points: tuple[PlanPoint, ...]
+    vectors: tuple[ForceVector, ...]
+    negligible: tuple[str, ...]
+
+    kind = "force"
+    lines: tuple = ()
+
+    @property
+    def sides(self) -> tuple[ForceVector, ...]:
+        return self.vectors
+
+
+def _short_runs(lengths: Sequence[float], short: float, run: float) -> list[list[int]]:
+    """Maximal runs (cyclic, in order) of consecutive sides each shorter than ``run`` with at
+    least one shorter than ``short``: lists of side indices."""
+    n = len(lengths)
+    small = [L < run for L in lengths]
+    if all(small) or n < 3:
+        return []
+    start = next(k for k in range(n) if not small[k])      # begin after a long side
+    out, cur = [], []
+    for m in range(1, n + 1):
+        k = (start + m) % n
+        if small[k]:
+            cur.append(k)
+        elif cur:
+            out.append(cur)
+            cur = []
+    if cur:
+        out.append(cur)
+    return [r for r in out if len(r) > 1 and any(lengths[k] < short for k in r)]
+
+
+def force_details(plan: ForcePlan, *, short: float = SHORT_SIDE_MM, run: float = RUN_SIDE_MM,
+                  window: tuple[float, float] = DETAIL_REFERENCE_MM) -> tuple[ForceDetail, ...]:
+    """The details of a plan's runs of short sides (see :class:`ForceDetail`): each run of
+    consecutive sides shorter than ``run`` mm holding one shorter than ``short`` mm, at the
+    series μF drawing its largest side in ``window`` mm (as :func:`force_scale`)."""
+    sides = plan.sides
+    if len(sides) < 3:
+        return ()
+    n = len(sides)
+    names = [p.label for p in plan.points[:n]]        # side j runs from point j to point j + 1
+    out = []
+    for r in _short_runs([v.length for v in sides], short, run):
+        vecs = np.array([np.subtract(sides[k].head, sides[k].tail) * plan.mu for k in r])   # N
+        corners = np.vstack([np.zeros(2), np.cumsum(vecs, axis=0)])
+        fmax = max(sides[k].value for k in r)
+        extent = float(max(np.ptp(corners[:, 0]), np.ptp(corners[:, 1])))
+        mu = force_scale(fmax, extent, window=window, limit=window[1] * 1.5)
+        xy = corners / mu
+        labels = [names[r[0]]] + [names[(k + 1) % n] for k in r]
+        points = tuple(PlanPoint(labels[j], _pt(xy[j])) for j in range(len(labels)))
+        vectors = tuple(ForceVector(sides[k].quantity, _pt(xy[j]), _pt(xy[j + 1]), sides[k].value, sides[k].kind)
+                        for j, k in enumerate(r))
+        negligible = tuple(v.quantity for v in vectors if v.length < short)
+        out.append(ForceDetail(float(mu), r[0], points, vectors, negligible))
+    return tuple(out)
 
 
 def _totals(terms: Sequence[ForceTerm]) -> list[ForceTerm]:

@@ -35,12 +35,14 @@ drawing or anything above the constructions.
 
 from __future__ import annotations
 
-from .force_polygon import (CLOSURE_REL, FORCE_PLAN_MAX_MM, FORCE_REFERENCE_MM, KINDS, ZERO_REL, ForcePlan, ForceTerm,
-                            ForceVector, _check_terms, _letters, _pt, _totals, _vec, component_of, force_plan)
+from .force_polygon import (CLOSURE_REL, FORCE_PLAN_MAX_MM, FORCE_REFERENCE_MM, KINDS, SHORT_SIDE_MM, ZERO_REL,
+                            ForceDetail, ForcePlan, ForceTerm, ForceVector, _check_terms, _letters, _pt, _totals, _vec,
+                            component_of, force_details, force_plan, force_scale)
 from .zhukovsky import (LEVER_FORCE_MM, PERPENDICULAR_REL, SENSE, BalanceForce, BalanceMoment, Lever, LeverCouple,
                         LeverForce, LeverLoad, _couple_direction, _cross, _fallback, _label_of, _turn, _unit,
                         zhukovsky_lever)
 
 __all__ = ["ForceTerm", "ForceVector", "ForcePlan", "force_plan", "KINDS", "CLOSURE_REL", "FORCE_REFERENCE_MM",
            "FORCE_PLAN_MAX_MM", "LeverLoad", "LeverCouple", "BalanceForce", "BalanceMoment", "LeverForce", "Lever",
-           "zhukovsky_lever", "LEVER_FORCE_MM", "SENSE", "component_of"]
+           "zhukovsky_lever", "LEVER_FORCE_MM", "SENSE", "component_of", "ForceDetail", "force_details",
+           "force_scale", "SHORT_SIDE_MM"]

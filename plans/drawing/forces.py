@@ -35,7 +35,7 @@ from typing import Sequence
 import numpy as np
 
 from ..errors import DrawingError
-from ..constructions.forces import ForcePlan, Lever, LeverForce, component_of
+from ..constructions.forces import SHORT_SIDE_MM, ForceDetail, ForcePlan, Lever, LeverForce, component_of, force_details
 from .canvas import Canvas, fmt
 from .marks import NO_HEAD_MM, arrow as _arrow, bounds, markup as _markup
 from .sheet import FORMATS, TitleBlock, choose_format, new_sheet
@@ -50,8 +50,10 @@ PANEL_GAP_MM = 8.0
 #: Height of the tables' and captions' text, and their line spacing, mm.
 TABLE_TEXT_MM = 2.8
 TABLE_LEAD_MM = 4.4
-#: Columns of a force table: symbol, value (N), drawn length (mm); their widths, mm.
-TABLE_COLUMNS_MM = (24.0, 24.0, 20.0)
+#: Columns of a force table: symbol, value (N), drawn length (mm), note; their widths, mm.
+TABLE_COLUMNS_MM = (22.0, 20.0, 18.0, 52.0)
+#: Two lettered vertices nearer than this read as one spot: one label names them all, mm.
+VERTEX_SPOT_MM = SHORT_SIDE_MM
 #: Width of the lever's written computation, mm.
 LEVER_TEXT_MM = 118.0
 #: Arms shorter than this are not drawn (their force's line passes through the pole), mm.
@@ -161,33 +163,62 @@ class _Panel:
     plan: ForcePlan
     content: tuple[float, float, float, float]     # the polygon's box, mm y up (labels' room included)
     caption: tuple[str, ...]
-    rows: tuple[tuple[str, str, str], ...]
+    rows: tuple[tuple[str, str, str, str], ...]
     width: float
     height: float
+    details: tuple[ForceDetail, ...] = ()
+    detail_boxes: tuple[tuple[float, float, float, float], ...] = ()    # each detail's box, mm y up
+    poly_width: float = 0.0                        # width of the polygon with its details beside it, mm
+    poly_height: float = 0.0
 
 
-def _table_rows(plan: ForcePlan) -> list[tuple[str, str, str]]:
+def _detail_caption(k: int, d: ForceDetail) -> str:
+    return f"detail {k + 1},  μ_F = {d.mu:g} N/mm"
+
+
+def _table_rows(plan: ForcePlan, details: Sequence[ForceDetail] = ()) -> list[tuple[str, str, str, str]]:
+    """A row per force: symbol, value (N), drawn length on the polygon (mm) and a note — where
+    a side under SHORT_SIDE_MM is drawn again (its detail and length there) or why it is
+    negligible."""
     drawn = {v.quantity: v for v in plan.vectors}
+    again = {v.quantity: (k, d, v) for k, d in enumerate(details) for v in d.vectors}
     rows = []
     for t in list(plan.terms) + list(plan.totals) + list(plan.internal):
         v = drawn.get(t.quantity)
-        rows.append((symbol(t.quantity), _number(t.value), _number(v.length, 4) if v else "0 (not drawn)"))
+        note = ""
+        if v is not None and v.length < SHORT_SIDE_MM:
+            if t.quantity in again:
+                k, d, w = again[t.quantity]
+                note = (f"< {SHORT_SIDE_MM:g} mm; in detail {k + 1}: {_number(w.length, 3)} mm"
+                        if w.length >= SHORT_SIDE_MM else
+                        f"negligible: {_number(w.length, 2)} mm in detail {k + 1}")
+            else:
+                note = f"negligible: < {SHORT_SIDE_MM:g} mm at μ_F"
+        rows.append((symbol(t.quantity), _number(t.value), _number(v.length, 4) if v else "0 (not drawn)", note))
     return rows
 
 
 def _panel(plan: ForcePlan, style: Style) -> _Panel:
     coords = [p.xy for p in plan.points] + [l.start for l in plan.lines] + [l.end for l in plan.lines]
     content = bounds(coords)
+    details = force_details(plan)
+    boxes = tuple(bounds([p.xy for p in d.points]) for d in details)
     equation = " + ".join(symbol(t.quantity) for t in plan.terms) + " = 0"
     head = f"Force plan of group {plan.group},  μ_F = {plan.mu:g} N/mm"
     w_poly = content[2] - content[0]
+    h_poly = content[3] - content[1]
+    if details:
+        col = max(max(b[2] - b[0] for b in boxes),
+                  max(width(runs(_detail_caption(k, d)), TABLE_TEXT_MM, False) for k, d in enumerate(details)))
+        w_poly += PANEL_GAP_MM + col
+        h_poly = max(h_poly, sum(TABLE_LEAD_MM + b[3] - b[1] for b in boxes))
     table_w = sum(TABLE_COLUMNS_MM)
     room = max(w_poly, table_w, 90.0)
     caption = tuple(wrap(head, room, TABLE_TEXT_MM) + wrap(equation, room, TABLE_TEXT_MM, indent="   "))
-    rows = _table_rows(plan)
+    rows = _table_rows(plan, details)
     w = max(room, max(width(runs(c), TABLE_TEXT_MM, False) for c in caption))
-    h = TABLE_LEAD_MM * (len(caption) + 0.5) + (content[3] - content[1]) + TABLE_LEAD_MM * (len(rows) + 1.8)
-    return _Panel(plan, content, caption, tuple(rows), w, h)
+    h = TABLE_LEAD_MM * (len(caption) + 0.5) + h_poly + TABLE_LEAD_MM * (len(rows) + 1.8)
+    return _Panel(plan, content, caption, tuple(rows), w, h, details, boxes, w_poly, h_poly)
 
 
 def _pack(panels: Sequence[_Panel], room_w: float, room_h: float) -> list[list[tuple[_Panel, float, float]]]:
@@ -247,11 +278,27 @@ def _force_sheet(placed, heading: Heading, ident: str, style: Style) -> str:
                         ident=f"{pid}-cap{r}")
         poly_top = top + TABLE_LEAD_MM * (len(p.caption) + 0.5)
         ch, cw = p.content[3] - p.content[1], p.content[2] - p.content[0]
-        _place(canvas, p.content, (left, poly_top, left + max(cw, p.width), poly_top + ch))
-        _force_layers(dwg, canvas, p.plan, pid, style)
-        ty = poly_top + ch + TABLE_LEAD_MM * 0.9
+        if p.details:
+            # the polygon on the left, its details stacked in a column beside it
+            _place(canvas, p.content, (left, poly_top, left + cw, poly_top + p.poly_height))
+            _force_layers(dwg, canvas, p.plan, pid, style, details=p.details)
+            dx = left + cw + PANEL_GAP_MM
+            dy = poly_top
+            for k, (d, b) in enumerate(zip(p.details, p.detail_boxes)):
+                canvas.text(texts, (dx, dy + TABLE_LEAD_MM * 0.75), _detail_caption(k, d), size=TABLE_TEXT_MM,
+                            ident=f"{pid}-dcap{k}")
+                dy += TABLE_LEAD_MM
+                _place(canvas, b, (dx, dy, dx + b[2] - b[0], dy + b[3] - b[1]))
+                _detail_layers(dwg, canvas, p.plan, d, f"{pid}-x{k}", style)
+                dy += b[3] - b[1]
+        else:
+            _place(canvas, p.content, (left, poly_top, left + max(cw, p.width), poly_top + ch))
+            _force_layers(dwg, canvas, p.plan, pid, style)
+        ty = poly_top + p.poly_height + TABLE_LEAD_MM * 0.9
         cols = np.cumsum((0.0,) + TABLE_COLUMNS_MM)
-        for c, head in enumerate(("force", "F, N", "drawn, mm")):
+        for c, head in enumerate(("force", "F, N", "drawn, mm", "")):
+            if not head:
+                continue
             canvas.text(texts, (left + cols[c], ty), head, size=TABLE_TEXT_MM, ident=f"{pid}-th{c}")
         rule_y = ty + TABLE_LEAD_MM * 0.45
         canvas.line(rules, (left - canvas.dx, canvas.dy - rule_y), (left + cols[-1] - canvas.dx, canvas.dy - rule_y),
@@ -266,12 +313,37 @@ def _force_sheet(placed, heading: Heading, ident: str, style: Style) -> str:
     return dwg.tostring()
 
 
-def _force_layers(dwg, canvas: Canvas, plan: ForcePlan, ident: str, style: Style) -> None:
-    """One polygon's group: direction lines, tagged vectors with heads, vertices and labels."""
+def _vertex_labels(points, hidden: set[str] = frozenset()) -> list[tuple[tuple[float, float], str]]:
+    """The vertex labels to write: (point, text). Vertices nearer one another than
+    VERTEX_SPOT_MM share one label (their letters joined, ``≡`` when they coincide), at the
+    first of them; ``hidden`` vertices (drawn in a detail) get none."""
+    out: list[tuple[tuple[float, float], list[str]]] = []
+    for p in points:
+        if p.label in hidden:
+            continue
+        near = next((o for o in out if math.dist(o[0], p.xy) < VERTEX_SPOT_MM), None)
+        if near is None:
+            out.append((p.xy, [p.label]))
+        elif p.label not in near[1]:
+            near[1].append(p.label)
+    texts = []
+    for xy, names in out:
+        same = all(math.dist(xy, q.xy) < 1e-6 for q in points if q.label in names)
+        texts.append((xy, (" ≡ " if same else ", ").join(_markup(n) for n in names)))
+    return texts
+
+
+def _force_layers(dwg, canvas: Canvas, plan: ForcePlan, ident: str, style: Style,
+                  details: Sequence[ForceDetail] = ()) -> None:
+    """One polygon's group: direction lines, tagged vectors with heads, vertices and labels.
+    The inner vertices of a run drawn in a detail are not lettered, nor its sides labelled
+    here (the detail letters and labels them)."""
     g = plan_group(dwg, canvas, plan, "force", ident, style)
     g.attribs["data-group"] = plan.group
     labels = dwg.g(id=f"{ident}-labels", fill=style.colour)
     centre = np.mean([p.xy for p in plan.points], axis=0)
+    hidden = {p.label for d in details for p in d.points[1:-1]}
+    in_detail = {v.quantity for d in details for v in d.vectors}
 
     def vertex(xy) -> str | None:
         return next((p.label for p in plan.points if math.dist(p.xy, xy) <= 1e-9), None)
@@ -280,23 +352,59 @@ def _force_layers(dwg, canvas: Canvas, plan: ForcePlan, ident: str, style: Style
     # may go anywhere beside its side
     for k, p in enumerate(plan.points):
         canvas.circle(labels, p.xy, 0.45, filled=True, id=f"{ident}-d{k}")
-        away = np.subtract(p.xy, centre)
-        canvas.label(labels, p.xy, _markup(p.label), size=style.small_text + 0.5,
+    for k, (xy, text) in enumerate(_vertex_labels(plan.points, hidden)):
+        away = np.subtract(xy, centre)
+        canvas.label(labels, xy, text, size=style.small_text + 0.5,
                      prefer=away if np.linalg.norm(away) > 1e-9 else (0.6, 0.8), ident=f"{ident}-l{k}",
                      digits=False, near=0.5)
     for k, v in enumerate(plan.vectors):
-        if v.role == "internal":
-            el = _dashed_vector(canvas, g, v.tail, v.head, style.colour, f"{ident}-v{k}", f"{ident}-h{k}", style)
-            colour = style.colour
-        elif v.role == "total":
-            colour = style.colour
-            el = _solid_vector(canvas, g, v.tail, v.head, colour, f"{ident}-v{k}", f"{ident}-h{k}", style)
-        else:
-            colour = _colour(style, v.kind)
-            el = _solid_vector(canvas, g, v.tail, v.head, colour, f"{ident}-v{k}", f"{ident}-h{k}", style)
+        el, colour = _force_vector(canvas, g, v, f"{ident}-v{k}", f"{ident}-h{k}", style)
         _tag(el, canvas, v.quantity, v.value, v.tail, v.head, vertex(v.tail), vertex(v.head))
         el.attribs["data-role"] = v.role
         el.attribs["data-kind"] = v.kind
+        if v.role == "side" and (v.length < SHORT_SIDE_MM or v.quantity in in_detail):
+            continue            # labelled in its detail, or unreadable and negligible in the table
+        mid = tuple(np.add(v.tail, v.head) / 2)
+        canvas.label(labels, mid, symbol(v.quantity), size=style.text,
+                     prefer=_side_label_direction(v.tail, v.head, centre), ident=f"{ident}-vl{k}", digits=False,
+                     fill=colour, near=0.4)
+    g.add(labels)
+    dwg.add(g)
+
+
+def _force_vector(canvas: Canvas, g, v, ident: str, head_ident: str, style: Style):
+    """A force plan's vector drawn as its role asks (an inner reaction dashed): (line, colour)."""
+    if v.role == "internal":
+        return _dashed_vector(canvas, g, v.tail, v.head, style.colour, ident, head_ident, style), style.colour
+    colour = style.colour if v.role == "total" else _colour(style, v.kind)
+    return _solid_vector(canvas, g, v.tail, v.head, colour, ident, head_ident, style), colour
+
+
+def _detail_layers(dwg, canvas: Canvas, plan: ForcePlan, detail: ForceDetail, ident: str, style: Style) -> None:
+    """A detail's own plan group (``data-plan="force"``, ``data-mu`` its μF, ``data-detail``
+    the group): its sides tagged as on the polygon, its vertices lettered as there."""
+    g = dwg.g(id=f"{ident}-plan")
+    g.attribs["data-mu"] = repr(detail.mu)
+    g.attribs["data-plan"] = "force"
+    g.attribs["data-vectors"] = str(len(detail.vectors))
+    g.attribs["data-group"] = plan.group
+    g.attribs["data-detail"] = "run"
+    labels = dwg.g(id=f"{ident}-labels", fill=style.colour)
+    centre = np.mean([p.xy for p in detail.points], axis=0)
+    for k, p in enumerate(detail.points):
+        canvas.circle(labels, p.xy, 0.45, filled=True, id=f"{ident}-d{k}")
+    for k, (xy, text) in enumerate(_vertex_labels(detail.points)):
+        away = np.subtract(xy, centre)
+        canvas.label(labels, xy, text, size=style.small_text + 0.5,
+                     prefer=away if np.linalg.norm(away) > 1e-9 else (0.6, 0.8), ident=f"{ident}-l{k}",
+                     digits=False, near=0.5)
+    for k, v in enumerate(detail.vectors):
+        el, colour = _force_vector(canvas, g, v, f"{ident}-v{k}", f"{ident}-h{k}", style)
+        _tag(el, canvas, v.quantity, v.value, v.tail, v.head, detail.points[k].label, detail.points[k + 1].label)
+        el.attribs["data-role"] = "side"
+        el.attribs["data-kind"] = v.kind
+        if v.length < SHORT_SIDE_MM:
+            continue
         mid = tuple(np.add(v.tail, v.head) / 2)
         canvas.label(labels, mid, symbol(v.quantity), size=style.text,
                      prefer=_side_label_direction(v.tail, v.head, centre), ident=f"{ident}-vl{k}", digits=False,
