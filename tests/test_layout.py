@@ -1,7 +1,8 @@
 """The layout test: every sheet of the gallery and of 100 random atlas mechanisms, measured from
 its SVG text alone (:func:`plans.layout.measure_layout`), must show no overlapping labels, no
-label crossing a line, no label off the sheet, no arrowhead longer than its vector and no
-sheet beyond A3.
+label crossing a line, no label off the sheet, no arrowhead longer than its vector, no
+sheet beyond A3 and no two vertex letters of a force plan on one spot (that rule's own sheets
+with the fault: tests/test_force_sheets.py).
 
 The measurer is first tried on tiny hand-written sheets, each with one known fault (so the
 test can fail), and on a clean one.

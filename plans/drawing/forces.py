@@ -173,7 +173,7 @@ class _Panel:
 
 
 def _detail_caption(k: int, d: ForceDetail) -> str:
-    return f"detail {k + 1},  μ_F = {d.mu:g} N/mm"
+    return f"detail {k + 1}, μ_F = {d.mu:g} N/mm"
 
 
 def _table_rows(plan: ForcePlan, details: Sequence[ForceDetail] = ()) -> list[tuple[str, str, str, str]]:

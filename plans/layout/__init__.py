@@ -6,7 +6,7 @@ size and style, ``<tspan>`` runs with their ``dx``/``dy`` shifts), sizes each wi
 of the sheet's font (:mod:`plans.drawing.text`: advance widths, ascent and descent), and every
 inked shape (``<line>``, ``<path>``, ``<polygon>``, ``<polyline>``, ``<rect>``, ``<circle>``,
 ``<ellipse>``: a stroke is its centreline buffered by half its stroke width, a dark fill is its
-area; a pale fill, white or the plates' tint, is paper). It counts five faults:
+area; a pale fill, white or the plates' tint, is paper). It counts six faults:
 
 - ``overlapping_labels`` — two text boxes whose interiors meet (touching edges is fine);
 - ``labels_crossing_lines`` — a text box meeting inked geometry; a leader
@@ -20,7 +20,11 @@ area; a pale fill, white or the plates' tint, is paper). It counts five faults:
   of its base, than the vector ``<line id=ID>`` it ends (or, for a drawn arc ``<path id=ID>``,
   the arc and on to the tip); or a tagged vector (``<line data-quantity>`` in a plan group)
   shorter than :data:`NO_HEAD_MM` that has a head;
-- ``beyond_a3`` — a sheet larger than A3 (297 mm × 420 mm, either way round).
+- ``beyond_a3`` — a sheet larger than A3 (297 mm × 420 mm, either way round);
+- ``overlapping_vertex_letters`` — two vertex letters of one force plan (``<g
+  data-plan="force">``: texts of the group reading exactly a vertex name its tagged vectors
+  join by ``data-from``/``data-to``) whose boxes overlap, or which name vertices nearer than
+  :data:`VERTEX_SPOT_MM` (they sit on one spot: no reader can tell which letter is which).
 
 A label crossing one element counts once, however many strokes of it (hatching) it meets.
 White space is read as SVG 1.1 renders it: a run of spaces is one space. A head whose
@@ -28,15 +32,15 @@ White space is read as SVG 1.1 renders it: a run of spaces is one space. A head 
 measured: it is listed in :attr:`LayoutReport.unmatched_heads`, not counted.
 
 The package: :mod:`.parsing` (small SVG parsers), :mod:`.sheet` (what a sheet holds: texts,
-ink, vectors, heads, frame, title block) and :mod:`.measure` (the five counts). Each imports
+ink, vectors, heads, frame, title block) and :mod:`.measure` (the six counts). Each imports
 only those before it; nothing here imports a module that draws.
 """
 
 from __future__ import annotations
 
 from .measure import (A3_MM, FORMATS, LEADER_TOUCH_MM, NO_HEAD_MM, ROUNDING_MM, SHOWN, SIZE_TOLERANCE_MM,
-                      LayoutReport, measure_layout)
+                      VERTEX_SPOT_MM, LayoutReport, measure_layout)
 from .parsing import PALE
 
 __all__ = ["LayoutReport", "measure_layout", "A3_MM", "NO_HEAD_MM", "SHOWN", "SIZE_TOLERANCE_MM", "FORMATS",
-           "ROUNDING_MM", "LEADER_TOUCH_MM", "PALE"]
+           "ROUNDING_MM", "LEADER_TOUCH_MM", "PALE", "VERTEX_SPOT_MM"]

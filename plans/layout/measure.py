@@ -1,5 +1,6 @@
-"""The five layout faults of one sheet (:func:`measure_layout`, :class:`LayoutReport`):
-overlapping labels, labels crossing lines, labels off the sheet, long arrowheads, beyond A3.
+"""The six layout faults of one sheet (:func:`measure_layout`, :class:`LayoutReport`):
+overlapping labels, labels crossing lines, labels off the sheet, long arrowheads, beyond A3,
+overlapping vertex letters of force plans.
 
 Knows :mod:`.sheet` (what the sheet holds) and :mod:`.parsing`; must not import anything that
 draws a sheet.
@@ -18,7 +19,7 @@ from .parsing import _local
 from .sheet import _Reader, _sheet_size
 
 __all__ = ["LayoutReport", "measure_layout", "A3_MM", "SIZE_TOLERANCE_MM", "FORMATS", "NO_HEAD_MM", "ROUNDING_MM",
-           "LEADER_TOUCH_MM", "SHOWN"]
+           "LEADER_TOUCH_MM", "SHOWN", "VERTEX_SPOT_MM"]
 
 #: The largest sheet allowed, mm (either orientation), and the tolerance on it.
 A3_MM = (297.0, 420.0)
@@ -34,11 +35,14 @@ ROUNDING_MM = 2e-3
 LEADER_TOUCH_MM = 0.01
 #: Offenders listed per fault (the counts are complete).
 SHOWN = 12
+#: Two vertices of a force plan nearer than this are one spot to the eye: their letters, each
+#: by its vertex, cannot say which is which, mm (a side this short is unreadable on the plan).
+VERTEX_SPOT_MM = 2.0
 
 
 @dataclass(frozen=True)
 class LayoutReport:
-    """What :func:`measure_layout` found on one sheet: the five counts and, for each, up to
+    """What :func:`measure_layout` found on one sheet: the six counts and, for each, up to
     :data:`SHOWN` offenders in words (label ids or texts, the ink they meet)."""
 
     width: float                 #: sheet width, mm
@@ -49,6 +53,7 @@ class LayoutReport:
     labels_off_sheet: int
     long_heads: int
     beyond_a3: int
+    overlapping_vertex_letters: int = 0
     overlaps: tuple[str, ...] = ()
     crossings: tuple[str, ...] = ()
     off_sheet: tuple[str, ...] = ()
@@ -56,10 +61,13 @@ class LayoutReport:
     oversize: tuple[str, ...] = ()
     labels: int = 0              #: texts measured
     unmatched_heads: tuple[str, ...] = field(default=())
+    vertex_letters: tuple[str, ...] = ()
 
-    COUNTS = ("overlapping_labels", "labels_crossing_lines", "labels_off_sheet", "long_heads", "beyond_a3")
+    COUNTS = ("overlapping_labels", "labels_crossing_lines", "labels_off_sheet", "long_heads", "beyond_a3",
+              "overlapping_vertex_letters")
     DETAILS = {"overlapping_labels": "overlaps", "labels_crossing_lines": "crossings",
-               "labels_off_sheet": "off_sheet", "long_heads": "heads", "beyond_a3": "oversize"}
+               "labels_off_sheet": "off_sheet", "long_heads": "heads", "beyond_a3": "oversize",
+               "overlapping_vertex_letters": "vertex_letters"}
 
     @property
     def counts(self) -> dict[str, int]:
@@ -205,9 +213,34 @@ def measure_layout(svg_text: str | bytes) -> LayoutReport:
             if len(heads) < SHOWN:
                 heads.append(f"vector {ident} is {L:.3f} mm < {NO_HEAD_MM:g} mm and has a head")
 
+    n_letters, letters = _vertex_letters(texts, reader.vertices)
+
     return LayoutReport(
         width=W, height=H, format=_format(W, H),
         overlapping_labels=n_overlaps, labels_crossing_lines=n_cross, labels_off_sheet=n_off,
-        long_heads=n_heads, beyond_a3=len(oversize),
+        long_heads=n_heads, beyond_a3=len(oversize), overlapping_vertex_letters=n_letters,
         overlaps=tuple(overlaps), crossings=tuple(crossings), off_sheet=tuple(off), heads=tuple(heads),
-        oversize=tuple(oversize), labels=len(texts), unmatched_heads=tuple(unmatched))
+        oversize=tuple(oversize), labels=len(texts), unmatched_heads=tuple(unmatched),
+        vertex_letters=tuple(letters))
+
+
+def _vertex_letters(texts, vertices: dict[str, dict[str, list[tuple[float, float]]]]) -> tuple[int, list[str]]:
+    """Pairs of vertex letters of one force plan that overlap or sit on one spot: a vertex
+    letter is a text of the plan's group reading exactly the name of a vertex its tagged vectors
+    join (data-from/data-to); a pair counts when the two boxes' interiors meet, or when the
+    vertices they name lie nearer than VERTEX_SPOT_MM (the first place each name is drawn)."""
+    n, shown = 0, []
+    for gid, named in vertices.items():
+        letters = [t for t in texts if t.force == gid and t.words in named]
+        for a in range(len(letters)):
+            for b in range(a + 1, len(letters)):
+                s, t = letters[a], letters[b]
+                (p0, q0, p1, q1), (r0, u0, r1, u1) = s.box, t.box
+                overlap = p0 < r1 and r0 < p1 and q0 < u1 and u0 < q1
+                gap = math.dist(named[s.words][0], named[t.words][0])
+                if overlap or gap < VERTEX_SPOT_MM:
+                    n += 1
+                    if len(shown) < SHOWN:
+                        why = "overlaps" if overlap else f"names a vertex {gap:.2f} mm from that of"
+                        shown.append(f"{gid}: {s.name} {_fmt_box(s.box)} {why} {t.name} {_fmt_box(t.box)}")
+    return n, shown

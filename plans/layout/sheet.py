@@ -29,6 +29,8 @@ class _Text:
     box: tuple[float, float, float, float]
     name: str
     title: bool               # a text of the title block
+    words: str = ""           # what it reads
+    force: str = ""           # the id of the force plan group (data-plan="force") it is in, if any
 
 
 @dataclass
@@ -61,6 +63,10 @@ class _Reader:
         self.root = root
         self.elements = 0
         self.paths: dict[str, list[tuple[float, float]]] = {}    # id -> points of its first subpath
+        # force plan group id -> vertex name -> paper points where a tagged vector names it
+        # (data-from at its tail, data-to at its head)
+        self.vertices: dict[str, dict[str, list[tuple[float, float]]]] = {}
+        self.groups = 0
 
     # context: dict of inherited style + flags
     def walk(self, el, ctx: dict, m: np.ndarray) -> None:
@@ -82,6 +88,9 @@ class _Reader:
             ctx["title"] = True
         if _attr(el, "data-plan") is not None:
             ctx["plan"] = True
+            if _attr(el, "data-plan") == "force":
+                self.groups += 1
+                ctx["force"] = ident or f"force plan {self.groups}"
         if ident:
             ctx["where"] = ident
         if tag == "text":
@@ -114,6 +123,11 @@ class _Reader:
             open_parts.append([a, b])
             if ident:
                 self.lines[ident] = (a, b, _attr(el, "data-quantity") is not None and bool(ctx.get("plan")))
+            if ctx.get("force") and _attr(el, "data-quantity") is not None:
+                named = self.vertices.setdefault(ctx["force"], {})
+                for key, p in (("data-from", a), ("data-to", b)):
+                    if _attr(el, key):
+                        named.setdefault(_attr(el, key), []).append(p)
         elif tag == "path":
             for pts, closed in _path_subpaths(_attr(el, "d") or ""):
                 (closed_parts if closed else open_parts).append([pt(*p) for p in pts])
@@ -221,7 +235,8 @@ class _Reader:
         words = "".join(g[0] for g in kept)
         ident = _attr(el, "id")
         name = f"{words!r}" + (f" ({ident})" if ident else f" in {ctx.get('where', '?')}")
-        self.texts.append(_Text((float(X0), float(Y0), float(X1), float(Y1)), name, bool(ctx.get("title"))))
+        self.texts.append(_Text((float(X0), float(Y0), float(X1), float(Y1)), name, bool(ctx.get("title")), words,
+                                ctx.get("force", "")))
 
     def _glyphs(self, el, ctx, out: list) -> None:
         """The characters of a text or tspan, each with its size, style, anchor and position
