@@ -52,8 +52,9 @@ TABLE_TEXT_MM = 2.8
 TABLE_LEAD_MM = 4.4
 #: Columns of a force table: symbol, value (N), drawn length (mm), note; their widths, mm.
 TABLE_COLUMNS_MM = (22.0, 20.0, 18.0, 52.0)
-#: Two lettered vertices nearer than this read as one spot: one label names them all, mm.
-VERTEX_SPOT_MM = SHORT_SIDE_MM
+#: Vertices nearer than this share one label naming them all, mm: a letter is about 2.5 mm
+#: tall, and two vertices nearer than SHORT_SIDE_MM read as one spot (the layout measurer's rule).
+VERTEX_SPOT_MM = 3.0
 #: Width of the lever's written computation, mm.
 LEVER_TEXT_MM = 118.0
 #: Arms shorter than this are not drawn (their force's line passes through the pole), mm.
@@ -170,6 +171,7 @@ class _Panel:
     detail_boxes: tuple[tuple[float, float, float, float], ...] = ()    # each detail's box, mm y up
     poly_width: float = 0.0                        # width of the polygon with its details beside it, mm
     poly_height: float = 0.0
+    table_beside: bool = False                     # the table right of the polygon, not below it
 
 
 def _detail_caption(k: int, d: ForceDetail) -> str:
@@ -217,7 +219,14 @@ def _panel(plan: ForcePlan, style: Style) -> _Panel:
     caption = tuple(wrap(head, room, TABLE_TEXT_MM) + wrap(equation, room, TABLE_TEXT_MM, indent="   "))
     rows = _table_rows(plan, details)
     w = max(room, max(width(runs(c), TABLE_TEXT_MM, False) for c in caption))
-    h = TABLE_LEAD_MM * (len(caption) + 0.5) + h_poly + TABLE_LEAD_MM * (len(rows) + 1.8)
+    h_table = TABLE_LEAD_MM * (len(rows) + 1.8)
+    h = TABLE_LEAD_MM * (len(caption) + 0.5) + h_poly + h_table
+    a3 = FORMATS[2].area
+    if h > a3.y1 - a3.y0:
+        # too tall for an A3 sheet's height with the table below: the table beside the polygon
+        w = max(w_poly + PANEL_GAP_MM + table_w, max(width(runs(c), TABLE_TEXT_MM, False) for c in caption))
+        h = TABLE_LEAD_MM * (len(caption) + 0.5) + max(h_poly, h_table)
+        return _Panel(plan, content, caption, tuple(rows), w, h, details, boxes, w_poly, h_poly, True)
     return _Panel(plan, content, caption, tuple(rows), w, h, details, boxes, w_poly, h_poly)
 
 
@@ -284,17 +293,20 @@ def _force_sheet(placed, heading: Heading, ident: str, style: Style) -> str:
             _force_layers(dwg, canvas, p.plan, pid, style, details=p.details)
             dx = left + cw + PANEL_GAP_MM
             dy = poly_top
-            for k, (d, b) in enumerate(zip(p.details, p.detail_boxes)):
-                canvas.text(texts, (dx, dy + TABLE_LEAD_MM * 0.75), _detail_caption(k, d), size=TABLE_TEXT_MM,
-                            ident=f"{pid}-dcap{k}")
+            for j, (d, b) in enumerate(zip(p.details, p.detail_boxes)):
+                canvas.text(texts, (dx, dy + TABLE_LEAD_MM * 0.75), _detail_caption(j, d), size=TABLE_TEXT_MM,
+                            ident=f"{pid}-dcap{j}")
                 dy += TABLE_LEAD_MM
                 _place(canvas, b, (dx, dy, dx + b[2] - b[0], dy + b[3] - b[1]))
-                _detail_layers(dwg, canvas, p.plan, d, f"{pid}-x{k}", style)
+                _detail_layers(dwg, canvas, p.plan, d, f"{pid}-x{j}", style)
                 dy += b[3] - b[1]
         else:
-            _place(canvas, p.content, (left, poly_top, left + max(cw, p.width), poly_top + ch))
+            _place(canvas, p.content, (left, poly_top, left + (cw if p.table_beside else max(cw, p.width)),
+                                       poly_top + ch))
             _force_layers(dwg, canvas, p.plan, pid, style)
         ty = poly_top + p.poly_height + TABLE_LEAD_MM * 0.9
+        if p.table_beside:
+            left, ty = left + p.poly_width + PANEL_GAP_MM, poly_top + TABLE_LEAD_MM * 0.9
         cols = np.cumsum((0.0,) + TABLE_COLUMNS_MM)
         for c, head in enumerate(("force", "F, N", "drawn, mm", "")):
             if not head:
