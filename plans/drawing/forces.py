@@ -5,9 +5,15 @@ its own μF (as a textbook draws them), captioned with the group, μF and the ve
 closes, and a table below of every force of the group — zero ones included, which are not
 drawn — with its value and drawn length. Panels are set side by side, then in rows, on the
 smallest standard sheet that holds them (A4 or A3); plans that do not fit one A3 sheet go on
-the next sheet. Known forces are blue, reaction components red, whole reactions black,
-reactions between the group's own links black and dashed; the directions of the normal
-components are thin dashed lines.
+the next sheet; a panel too tall for A3 with its table below has the table beside the
+polygon. Known forces are blue, reaction components red, whole reactions black, reactions
+between the group's own links black and dashed; the directions of the normal components are
+thin dashed lines. Each run of short sides (:func:`~plans.constructions.forces.force_details`)
+is drawn again beside the polygon in an enlarged detail with its own μF ("detail k, μF = …",
+its own ``<g data-plan="force" data-detail="run">``); the polygon letters only the run's
+ends and labels none of its sides, and the table's note says, for each side under 2 mm,
+where it is drawn again or that it is negligible. Vertices nearer than
+:data:`VERTEX_SPOT_MM` share one label.
 
 **Lever** (:func:`draw_lever`): the velocity plan turned 90° clockwise (thin), the forces at
 the turned images as arrows in μF (a moment's couple dashed, the balancing element red), the
