@@ -277,3 +277,60 @@ def test_the_rule_is_zero_on_every_gallery_force_sheet(sheets):
         if not r.clean:
             bad[name] = {k: r.offenders(k)[:3] for k, v in r.counts.items() if v}
     assert not bad, bad
+
+
+# --- the scale and the details, as geometry ------------------------------------------------------
+
+@pytest.mark.parametrize("fmax", [1.0, 3.3, 12.0, 99.0, 187.6, 199.9, 250.0, 380.0, 499.0, 760.0, 799.0, 4000.0,
+                                  3839.0, 1.7e6])
+def test_force_scale_draws_the_largest_force_100_to_150_mm(fmax):
+    from plans.constructions.forces import force_scale
+
+    mu = force_scale(fmax, fmax)
+    mantissa = mu / 10.0 ** math.floor(math.log10(mu))
+    assert any(math.isclose(mantissa, m, rel_tol=1e-9) for m in SERIES)
+    L = fmax / mu
+    lengths = series_lengths(fmax)
+    if any(WINDOW[0] <= x <= WINDOW[1] for x in lengths):
+        assert WINDOW[0] <= L <= WINDOW[1]
+        # and nearest the window's middle (log scale) among those in it
+        mid = math.sqrt(WINDOW[0] * WINDOW[1])
+        best = min((x for x in lengths if WINDOW[0] <= x <= WINDOW[1]), key=lambda x: abs(math.log(x / mid)))
+        assert L == pytest.approx(best)
+    else:                          # the series jumps over the window: the longest drawing under it
+        assert L == pytest.approx(max(x for x in lengths if x < WINDOW[0]))
+        assert 93.75 <= L < WINDOW[0]
+
+
+def test_a_wide_polygon_is_coarsened_to_fit():
+    from plans.constructions.forces import force_scale
+
+    # largest force 1000 N (125 mm at μF = 8) but the polygon 3000 N across: 240 mm at most
+    mu = force_scale(1000.0, 3000.0)
+    assert 3000.0 / mu <= 240.0 and mu == 12.5
+
+
+def test_details_of_a_run_of_short_sides():
+    """A 4 kN force closed by a 3.9 kN reaction and a run of small ones: the run (< 10 mm each,
+    one < 2 mm) drawn again at the series μF that draws its largest side 40–60 mm."""
+    from plans.constructions.forces import force_details
+
+    small = [ForceTerm("G:4", (0.0, -39.24), "gravity"), ForceTerm("F:in:4", (-2.0, -3.3), "inertia"),
+             ForceTerm("G:5", (0.0, -98.1), "gravity"), ForceTerm("F:in:5", (0.0, -21.4), "inertia")]
+    rest = np.sum([t.vector for t in small], axis=0) + (0.0, 4000.0)
+    terms = small + [ForceTerm("F:ext:E", (0.0, 4000.0), "external"),
+                     ForceTerm("R:0-5", (-rest[0], -rest[1]), "reaction")]
+    fp = force_plan("II(4-5)", terms)
+    assert fp.mu == 40.0                                                  # 4000 N drawn 100 mm
+    (d,) = force_details(fp)
+    assert [v.quantity for v in d.vectors] == ["G:4", "F:in:4", "G:5", "F:in:5"]
+    assert d.mu == 2.0                                                    # G5 = 98.1 N drawn 49 mm
+    assert [p.label for p in d.points] == ["a", "b", "c", "d", "e"]
+    for v, t in zip(d.vectors, small):
+        np.testing.assert_allclose(np.subtract(v.head, v.tail) * d.mu, t.vector, atol=1e-9)
+    # F_in,4 = 3.86 N: 1.93 mm even in the detail
+    assert d.negligible == ("F:in:4",)
+    # a run of one short side gets no detail
+    lone = [ForceTerm("A", (0.0, 4000.0), "external"), ForceTerm("B", (1.0, -2000.0), "external"),
+            ForceTerm("C", (0.0, -2000.0), "external"), ForceTerm("D", (-1.0, 0.0), "external")]
+    assert force_details(force_plan("II", lone)) == ()
