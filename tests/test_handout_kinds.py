@@ -180,3 +180,33 @@ def test_bad_gear_variants_are_refused_in_one_line(tmp_path, variant, words):
 def test_scenes_without_a_handout_are_refused(tmp_path, scene, words):
     line = _refused(tmp_path, str(EX / scene), "--random", "2")
     assert words in line, line
+
+
+def test_a_laws_corners_give_the_same_law():
+    """The task text writes a load law by its corners only: read linearly between them, it is
+    the scene's law at every travel (np.interp as the reader), and a flat run is two points."""
+    import numpy as np
+
+    from plans.handout.assignment import law_corners
+
+    rng = np.random.default_rng(20)
+    for _ in range(200):
+        n = int(rng.integers(2, 40))
+        x = np.cumsum(rng.uniform(0.001, 0.02, n)) - 0.001
+        x[0] = 0.0
+        F = rng.choice([0.0, 3015.9, -120.0], n)                  # flat runs of repeated values
+        ramp = rng.random(n) < 0.3
+        F[ramp] = rng.uniform(-5e3, 5e3, int(ramp.sum()))
+        law = tuple(zip(x.tolist(), F.tolist()))
+        kept = law_corners(law)
+        assert kept[0] == law[0] and kept[-1] == law[-1] and set(kept) <= set(law)
+        kx, kF = np.array(kept).T
+        probe = np.linspace(0.0, x[-1], 997)
+        assert np.allclose(np.interp(probe, kx, kF), np.interp(probe, x, F), rtol=0, atol=1e-6 * max(1.0, abs(F).max()))
+        # and no point is kept that its kept neighbours' line passes through
+        for k in range(1, len(kept) - 1):
+            (x0, f0), (xk, fk), (x1, f1) = kept[k - 1], kept[k], kept[k + 1]
+            assert abs(f0 + (f1 - f0) * (xk - x0) / (x1 - x0) - fk) > 1e-12 * max(1.0, abs(F).max())
+    flat = tuple((0.01 * k, 3015.9) for k in range(11))
+    assert law_corners(flat) == (flat[0], flat[-1])
+    assert law_corners(((0.0, 1.0), (0.1, 5.0))) == ((0.0, 1.0), (0.1, 5.0))

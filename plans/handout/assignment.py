@@ -23,7 +23,7 @@ from .asked import Asked, asked, kind_of
 from .solving import variant_data
 from .variants import Drawn, Handout
 
-__all__ = ["assignment_svg", "loads_cells", "task_text", "variant_asked", "given_and_task"]
+__all__ = ["assignment_svg", "law_corners", "loads_cells", "task_text", "variant_asked", "given_and_task"]
 
 
 def _found(d: Drawn) -> tuple[list[str], list[str]]:
@@ -47,6 +47,28 @@ def _names(asked: tuple[Asked, ...]) -> str:
     return ", ".join(a.symbol for a in asked)
 
 
+#: A law's point is left out of the task's text when the line through its neighbours passes
+#: within this fraction of the law's largest |F| of it (the law read linearly is the same).
+CORNER_TOLERANCE = 1e-9
+
+
+def law_corners(law: tuple[tuple[float, float], ...]) -> tuple[tuple[float, float], ...]:
+    """The points of a load ``law`` ((x, F) pairs, x increasing) where its slope changes: the
+    first, the last, and every point off the line through the kept one before and the next one.
+    Read linearly between them, they give the same law (a flat run of 3015.9 N over ten points
+    is written as its two ends)."""
+    if len(law) <= 2:
+        return tuple(law)
+    tol = CORNER_TOLERANCE * max(abs(F) for _, F in law)
+    kept = [law[0]]
+    for k in range(1, len(law) - 1):
+        (x0, f0), (x, f), (x1, f1) = kept[-1], law[k], law[k + 1]
+        if abs(f0 + (f1 - f0) * (x - x0) / (x1 - x0) - f) > tol:
+            kept.append(law[k])
+    kept.append(law[-1])
+    return tuple(kept)
+
+
 def loads_cells(scene: Scene, unit: str = "m") -> tuple[list[str], list[str]]:
     """The data cells of the masses, inertias, gravity and constant loads, and the sentences
     describing the loads that follow the cycle (their tables; the output's travel in ``unit``)."""
@@ -63,7 +85,7 @@ def loads_cells(scene: Scene, unit: str = "m") -> tuple[list[str], list[str]]:
             way = "against its point's velocity" if f.oppose or f.vector is None else \
                 f"at {math.degrees(math.atan2(f.vector[1], f.vector[0])) % 360.0 + 0.0:g}°"
             stroke = {"working": "on the working stroke", "return": "on the return stroke"}.get(f.stroke, "")
-            table = ", ".join(f"{x:g} {unit} → {y:g} N" for x, y in f.law)
+            table = ", ".join(f"{x:g} {unit} → {y:g} N" for x, y in law_corners(f.law))
             laws.append(f"{name} acts at {f.at} {way}{' ' + stroke if stroke else ''}; it follows the output's "
                         f"travel from its {f.origin} extreme (travel → force, linear between): {table}.")
         elif f.vector is None:
