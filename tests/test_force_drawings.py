@@ -23,7 +23,7 @@ from plans.constructions import velocity_plan
 from plans.constructions.forces import (BalanceForce, BalanceMoment, ForceTerm, LeverCouple, LeverLoad, force_plan,
                                         zhukovsky_lever)
 from plans.constructions.plans import Plan, PlanPoint, PlanVector
-from plans.constructions.scales import SERIES
+from plans.constructions.force_polygon import FORCE_SERIES
 from plans.drawing.forces import draw_force_plans, draw_lever, symbol
 from plans.drawing.svg import Heading
 from plans.errors import ConstructionError
@@ -35,7 +35,7 @@ HEADING = Heading("Test mechanism", "Force plans", "φ1 = 30°")
 
 def in_series(mu: float) -> bool:
     k = math.floor(math.log10(mu) + 1e-12)
-    return any(math.isclose(mu, m * 10.0 ** k, rel_tol=1e-12) for m in SERIES)
+    return any(math.isclose(mu, m * 10.0 ** k, rel_tol=1e-12) for m in FORCE_SERIES)
 
 
 def random_group(rng: np.random.Generator) -> tuple[list[ForceTerm], ForceTerm]:

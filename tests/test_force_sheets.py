@@ -68,7 +68,7 @@ def text_of(root, ident: str) -> str:
 def series_lengths(value: float) -> list[float]:
     """The drawn lengths of ``value`` at every series scale m·10^k near it, mm."""
     k0 = math.floor(math.log10(value / WINDOW[1]))
-    return [value / (m * 10.0 ** k) for k in range(k0 - 2, k0 + 3) for m in SERIES]
+    return [value / (m * 10.0 ** k) for k in range(k0 - 2, k0 + 3) for m in (*SERIES, 1.5, 3.0, 6.0)]
 
 
 def test_the_gallery_draws_force_sheets(sheets):
@@ -282,24 +282,21 @@ def test_the_rule_is_zero_on_every_gallery_force_sheet(sheets):
 # --- the scale and the details, as geometry ------------------------------------------------------
 
 @pytest.mark.parametrize("fmax", [1.0, 3.3, 12.0, 99.0, 187.6, 199.9, 250.0, 380.0, 499.0, 760.0, 799.0, 4000.0,
-                                  3839.0, 1.7e6])
+                                  3839.0, 1.7e6, 1e-300 * 3.7, 2.3e300])
 def test_force_scale_draws_the_largest_force_100_to_150_mm(fmax):
+    """Every largest force, those where the standard series alone jumps over the window
+    (187.5–200, 375–400, 750–800 × 10^k N) included, is drawn 100–150 mm, by a μF of the
+    series with 1.5, 3 and 6 added, the one nearest the window's middle (log scale)."""
     from plans.constructions.forces import force_scale
 
     mu = force_scale(fmax, fmax)
     mantissa = mu / 10.0 ** math.floor(math.log10(mu))
-    assert any(math.isclose(mantissa, m, rel_tol=1e-9) for m in SERIES)
+    assert any(math.isclose(mantissa, m, rel_tol=1e-9) for m in (*SERIES, 1.5, 3.0, 6.0))
     L = fmax / mu
-    lengths = series_lengths(fmax)
-    if any(WINDOW[0] <= x <= WINDOW[1] for x in lengths):
-        assert WINDOW[0] <= L <= WINDOW[1]
-        # and nearest the window's middle (log scale) among those in it
-        mid = math.sqrt(WINDOW[0] * WINDOW[1])
-        best = min((x for x in lengths if WINDOW[0] <= x <= WINDOW[1]), key=lambda x: abs(math.log(x / mid)))
-        assert L == pytest.approx(best)
-    else:                          # the series jumps over the window: the longest drawing under it
-        assert L == pytest.approx(max(x for x in lengths if x < WINDOW[0]))
-        assert 93.75 <= L < WINDOW[0]
+    assert WINDOW[0] * (1 - 1e-9) <= L <= WINDOW[1] * (1 + 1e-9)
+    mid = math.sqrt(WINDOW[0] * WINDOW[1])
+    best = min((x for x in series_lengths(fmax) if WINDOW[0] <= x <= WINDOW[1]), key=lambda x: abs(math.log(x / mid)))
+    assert L == pytest.approx(best)
 
 
 def test_a_wide_polygon_is_coarsened_to_fit():
@@ -321,7 +318,7 @@ def test_details_of_a_run_of_short_sides():
     terms = small + [ForceTerm("F:ext:E", (0.0, 4000.0), "external"),
                      ForceTerm("R:0-5", (-rest[0], -rest[1]), "reaction")]
     fp = force_plan("II(4-5)", terms)
-    assert fp.mu == 40.0                                                  # 4000 N drawn 100 mm
+    assert fp.mu == 30.0                                                  # 4000 N drawn 133 mm
     (d,) = force_details(fp)
     assert [v.quantity for v in d.vectors] == ["G:4", "F:in:4", "G:5", "F:in:5"]
     assert d.mu == 2.0                                                    # G5 = 98.1 N drawn 49 mm

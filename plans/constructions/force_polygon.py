@@ -17,9 +17,9 @@ import numpy as np
 
 from ..errors import ConstructionError
 from .plan_values import EXTENSION_MM, ConstructionLine, PlanPoint
-from .scales import _series_values
+from .scales import SERIES, _series_values
 
-__all__ = ["ForceTerm", "ForceVector", "ForcePlan", "force_plan", "KINDS", "CLOSURE_REL", "FORCE_REFERENCE_MM",
+__all__ = ["ForceTerm", "ForceVector", "ForcePlan", "force_plan", "KINDS", "CLOSURE_REL", "FORCE_REFERENCE_MM", "FORCE_SERIES",
            "FORCE_PLAN_MAX_MM", "component_of", "force_scale", "ForceDetail", "force_details", "SHORT_SIDE_MM",
            "RUN_SIDE_MM", "DETAIL_REFERENCE_MM", "TWO_FORCE_OFFSET_MM"]
 
@@ -31,9 +31,12 @@ CLOSURE_REL = 1e-9
 ZERO_REL = 1e-12
 #: Wanted drawn length of a plan's largest force (its largest side), mm, as the reference
 #: vectors of the velocity and acceleration plans: never longer; shorter only where the
-#: series has no value in the window (the largest force 187.5–200, 375–400 or 750–800 × 10^k
-#: N: the next value down draws it 94–100 mm) or the polygon would exceed FORCE_PLAN_MAX_MM.
+#: polygon would exceed FORCE_PLAN_MAX_MM.
 FORCE_REFERENCE_MM = (100.0, 150.0)
+#: Mantissas of μF: the standard series with 1.5, 3 and 6 between its steps of 1.6× (1.25 → 2,
+#: 2.5 → 4, 5 → 8), wider than the window's 1.5×; no step is then over 4/3, so some μF always
+#: draws the largest force within FORCE_REFERENCE_MM.
+FORCE_SERIES = tuple(sorted(SERIES + (1.5, 3.0, 6.0)))
 #: Largest width or height of a force plan, mm: one polygon of a panel on an A3 sheet.
 FORCE_PLAN_MAX_MM = 240.0
 #: A side drawn shorter than this (mm) cannot be read on the polygon: it is drawn again in an
@@ -243,15 +246,15 @@ def force_plan(group: str, terms: Sequence[ForceTerm], *, internal: Sequence[For
 
 def force_scale(fmax: float, extent: float, *, window: tuple[float, float] = FORCE_REFERENCE_MM,
                 limit: float = FORCE_PLAN_MAX_MM) -> float:
-    """μF (N/mm) of the series (:data:`~.scales.SERIES`) that draws the largest force ``fmax``
-    (N) nearest the middle of ``window`` (mm, log scale) and never longer than its top, while
-    the polygon's ``extent`` (N, its largest width or height) stays within ``limit`` mm; when
-    no series value draws it within the window, the one drawing it longest below the window."""
+    """μF (N/mm) of :data:`FORCE_SERIES` that draws the largest force ``fmax`` (N) nearest the
+    middle of ``window`` (mm, log scale) and never longer than its top, while the polygon's
+    ``extent`` (N, its largest width or height) stays within ``limit`` mm; when the extent
+    leaves no value drawing it within the window, the one drawing it longest below."""
     if not (fmax > 0 and math.isfinite(fmax)):
         raise ConstructionError(f"largest force {fmax!r} N is not a positive number")
     extent = max(extent, fmax)
     mid = math.sqrt(window[0] * window[1])
-    fitting = [mu for mu in _series_values(fmax / window[1] / 10.0, extent / window[0] * 10.0)
+    fitting = [mu for mu in _series_values(fmax / window[1] / 10.0, extent / window[0] * 10.0, FORCE_SERIES)
                if fmax / mu <= window[1] * (1 + 1e-12) and extent / mu <= limit * (1 + 1e-12)]
     inside = [mu for mu in fitting if fmax / mu >= window[0] * (1 - 1e-12)]
     if inside:

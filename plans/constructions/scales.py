@@ -46,11 +46,12 @@ class Scales:
         return {k: v for k, v in (("mu_l", self.mu_l), ("mu_v", self.mu_v), ("mu_a", self.mu_a)) if v is not None}
 
 
-def _series_values(lo: float, hi: float) -> list[float]:
-    """Series scales m·10^k from below ``lo`` to above ``hi``, each the double nearest its decimal
-    (written as text, so 1.25e-15 stays 1.25e-15 where rounding to 12 decimals gave 0)."""
+def _series_values(lo: float, hi: float, series: tuple[float, ...] = SERIES) -> list[float]:
+    """Series scales m·10^k (m in ``series``) from below ``lo`` to above ``hi``, each the double
+    nearest its decimal (written as text, so 1.25e-15 stays 1.25e-15 where rounding to 12
+    decimals gave 0)."""
     kmin, kmax = math.floor(math.log10(lo)) - 1, math.ceil(math.log10(hi)) + 1
-    return [float(f"{m:g}e{k}") for k in range(kmin, kmax + 1) for m in SERIES]
+    return [float(f"{m:g}e{k}") for k in range(kmin, kmax + 1) for m in series]
 
 
 def standard_scale(reference: float, *, window: tuple[float, float] = REFERENCE_MM,
