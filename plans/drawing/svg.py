@@ -138,18 +138,20 @@ def draw_plan(plan: Plan, heading: Heading, *, ident: str, style: Style = Style(
     return dwg.tostring()
 
 
-def detail_caption(plan: Plan, k: int) -> str:
-    """The statement of a detail ×k of ``plan``: its factor and its own scale."""
-    sym = "μ_V" if plan.kind == "velocity" else "μ_a"
+def detail_caption(plan: Plan, k: int, symbol: str | None = None) -> str:
+    """The statement of a detail ×k of ``plan``: its factor and its own scale, written
+    ``symbol`` (μ_V or μ_a by the plan's kind when None)."""
+    sym = symbol or ("μ_V" if plan.kind == "velocity" else "μ_a")
     unit = {"velocity": "(m/s)/mm", "acceleration": "(m/s²)/mm"}.get(plan.kind, "per mm")
-    return f"detail ×{k}, {sym} = {plan.mu / k:g} {unit}"
+    return f"detail ×{k}, {sym} = {plan.mu / k:.4g} {unit}"
 
 
-def detail_of(plan: Plan, sizes: tuple[tuple[float, float], ...], style: Style) -> PlanDetail | None:
+def detail_of(plan: Plan, sizes: tuple[tuple[float, float], ...], style: Style,
+              symbol: str | None = None) -> PlanDetail | None:
     """The detail of ``plan``'s pole region (:func:`~plans.constructions.detail.pole_detail`)
     placed so that the plan and it, with room for their letters, fit one of ``sizes`` (mm)."""
     def caption(k: int) -> tuple[float, float]:
-        return text_width(runs(detail_caption(plan, k)), style.small_text, False), \
+        return text_width(runs(detail_caption(plan, k, symbol)), style.small_text, False), \
             (ASCENT + DESCENT) * style.small_text + 0.5
 
     return pole_detail(plan, sizes=sizes, room=LABEL_ROOM_MM, caption=caption)
@@ -162,7 +164,8 @@ def _crowd(detail: PlanDetail | None) -> frozenset[str]:
     return frozenset(p.label for p in detail.plan.points if p.label != detail.plan.pole)
 
 
-def detail_layers(dwg, canvas: Canvas, plan: Plan, detail: PlanDetail, ident: str, style: Style) -> None:
+def detail_layers(dwg, canvas: Canvas, plan: Plan, detail: PlanDetail, ident: str, style: Style,
+                  symbol: str | None = None) -> None:
     """The detail ×k of ``plan``'s pole region: a thin circle round the region on the plan,
     the detail's own circle, its caption and the detail itself, a plan group of its own
     (``{ident}-detail-plan``, μ/k) measured by ``plans check`` like the plan."""
@@ -173,7 +176,7 @@ def detail_layers(dwg, canvas: Canvas, plan: Plan, detail: PlanDetail, ident: st
     dwg.add(marks)
     text = dwg.g(id=f"{ident}-detail-caption")
     x, y = canvas.paper(detail.caption)
-    canvas.text(text, (x, y - DESCENT * style.small_text - 0.25), detail_caption(plan, detail.k),
+    canvas.text(text, (x, y - DESCENT * style.small_text - 0.25), detail_caption(plan, detail.k, symbol),
                 size=style.small_text, ident=f"{ident}-detail-statement")
     dwg.add(text)
     plan_layers(dwg, canvas, detail.plan, f"{ident}-detail", style)
