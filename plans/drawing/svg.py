@@ -20,7 +20,9 @@ What ``plans check`` reads (:mod:`plans.checking`), on every tagged ``<line>``:
 
 and on each plan's ``<g>``: ``data-mu`` (scale), ``data-plan`` (velocity, acceleration,
 centres, scheme) and, but on the scheme, ``data-vectors`` (how many tagged vectors it
-holds; "0": a plan drawn as the pole alone). The root ``data-precision`` states the
+holds; "0": a plan drawn as the pole alone). A detail of the pole region (images crowding
+the pole, :func:`detail_layers`) is a plan group of its own, same ``data-plan``, ``data-mu``
+= μ/k. The root ``data-precision`` states the
 writer's rounding (mm); the checker takes its tolerance from its own rules, never from it.
 """
 
