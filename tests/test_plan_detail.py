@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from plans.checking import inspect_svg
-from plans.constructions.detail import CLEAR_MM, DETAIL_MM, FACTORS, pole_crowd, pole_detail
+from plans.constructions.detail import CLEAR_MM, DETAIL_MIN_MM, DETAIL_MM, FACTORS, pole_crowd, pole_detail
 from plans.constructions.plans import Plan, PlanPoint, PlanVector
 from plans.layout import measure_layout
 from plans.pipeline import read_scene, render_scene, solve_scene
@@ -92,6 +92,20 @@ def test_a_crowd_of_two_images_is_enlarged_by_the_largest_round_factor():
     to_pa = math.hypot(cx, cy - min(max(cy, 0.0), 100.0))
     assert to_pa >= d.frame + CLEAR_MM - 1e-9
     assert math.dist(d.centre, d.middle) >= d.frame + d.region + CLEAR_MM - 1e-9
+
+
+def test_a_crowd_too_close_to_enlarge_or_without_a_vector_gets_no_detail():
+    def detail(plan):
+        return pole_detail(plan, sizes=((400.0, 400.0),), room=10.0, caption=lambda k: (40.0, 3.0))
+
+    # 0.005 mm from the pole: × 1000 leaves 5 mm, under DETAIL_MIN_MM
+    tiny = _plan({"p": (0.0, 0.0), "b": (0.005, 0.0), "c": (0.0, 0.004), "a": (0.0, 100.0)},
+                 [("v:B", "p", "b"), ("v:C", "p", "c"), ("v:A", "p", "a")])
+    assert pole_crowd(tiny) is not None and 1000 * 0.005 < DETAIL_MIN_MM and detail(tiny) is None
+    # two images near the pole, each reached from far only: nothing to redraw
+    far = _plan({"p": (0.0, 0.0), "b": (1.0, 0.0), "c": (0.0, 2.0), "a": (0.0, 100.0)},
+                [("v:B/A", "a", "b"), ("v:C/A", "a", "c"), ("v:A", "p", "a")])
+    assert pole_crowd(far) is not None and detail(far) is None
 
 
 def test_one_image_near_the_pole_is_no_crowd():

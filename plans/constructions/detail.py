@@ -4,9 +4,10 @@ A plan is scaled by its largest vector, so images of slow points (or small compo
 gather within a few millimetres of the pole, their letters crowding. :func:`pole_detail`
 finds such a crowd (:func:`pole_crowd`: two or more images, not at the pole itself, within
 :data:`NEAR_MM` of it), enlarges the region round the pole × k (k from :data:`FACTORS`, the
-largest that keeps the enlarged crowd within :data:`DETAIL_MM` of its pole) and redraws the
-vectors that lie wholly inside the region at μ/k: the detail is a :class:`Plan` of its own
-(same kind, μ/k), so every vector measures its value there too and its vector equations close.
+largest that keeps the enlarged crowd within :data:`DETAIL_MM` of its pole; none when even
+that leaves it under :data:`DETAIL_MIN_MM`) and redraws the vectors that lie wholly inside the
+region at μ/k (none there: no detail): the detail is a :class:`Plan` of its own (same kind,
+μ/k), so every vector measures its value there too and its vector equations close.
 
 Where the detail goes: beside the plan, at the free spot (no vector, construction line or
 image within :data:`CLEAR_MM`) that keeps the plan and the detail in the smallest box that
@@ -25,7 +26,7 @@ import shapely
 
 from .plan_values import ConstructionLine, Plan, PlanPoint
 
-__all__ = ["PlanDetail", "pole_crowd", "pole_detail", "NEAR_MM", "DETAIL_MM", "FACTORS", "CLEAR_MM"]
+__all__ = ["PlanDetail", "pole_crowd", "pole_detail", "NEAR_MM", "DETAIL_MM", "DETAIL_MIN_MM", "FACTORS", "CLEAR_MM"]
 
 #: Images closer to the pole than this crowd it, mm.
 NEAR_MM = 5.0
@@ -33,6 +34,9 @@ NEAR_MM = 5.0
 AT_POLE_MM = 1e-6
 #: The enlarged crowd's largest distance from the detail's pole, mm (at most).
 DETAIL_MM = 60.0
+#: … and at least this, else the crowd stays as it is (images within a hundredth of a millimetre
+#: share one letter on the plan, as coinciding), mm.
+DETAIL_MIN_MM = 10.0
 #: Round enlargement factors, tried largest first.
 FACTORS = (1000, 500, 200, 100, 50, 20, 10, 5, 2)
 #: The detail's frame (a circle) runs this far beyond its farthest image, as a part of that distance.
@@ -109,10 +113,10 @@ def pole_detail(plan: Plan, *, sizes: tuple[tuple[float, float], ...], room: flo
         return None
     _, radius = crowd
     k = _factor(radius)
-    while k is not None:
+    while k is not None and k * radius >= DETAIL_MIN_MM:
         found = _place(plan, k, radius, sizes=sizes, room=room, caption=caption(k))
         if found is not None:
-            return found
+            return found if found.plan.vectors else None       # letters alone: no detail
         k = next((f for f in FACTORS if f < k), None)
     return None
 
