@@ -26,7 +26,7 @@ import shapely
 
 from .plan_values import ConstructionLine, Plan, PlanPoint
 
-__all__ = ["PlanDetail", "pole_crowd", "pole_detail", "NEAR_MM", "DETAIL_MM", "DETAIL_MIN_MM", "FACTORS", "CLEAR_MM"]
+__all__ = ["PlanDetail", "pole_crowd", "enlargeable", "pole_detail", "NEAR_MM", "DETAIL_MM", "DETAIL_MIN_MM", "FACTORS", "CLEAR_MM"]
 
 #: Images closer to the pole than this crowd it, mm.
 NEAR_MM = 5.0
@@ -102,21 +102,37 @@ def _factor(radius: float) -> int | None:
     return next((k for k in FACTORS if k * radius <= DETAIL_MM), None)
 
 
+def enlargeable(plan: Plan, near: float = NEAR_MM) -> tuple[tuple[str, ...], float, int] | None:
+    """The crowd of ``plan``'s pole (:func:`pole_crowd`: labels, radius mm) and the largest factor
+    k that keeps it within DETAIL_MM, when a detail is worth drawing: k × radius at least
+    DETAIL_MIN_MM and a vector wholly inside the region; else None."""
+    crowd = pole_crowd(plan, near)
+    if crowd is None:
+        return None
+    labels, radius = crowd
+    k = _factor(radius)
+    pole = plan.point(plan.pole)
+    inside = [v for v in plan.vectors
+              if math.dist(v.tail, pole) <= _reach(radius) and math.dist(v.head, pole) <= _reach(radius)]
+    if k is None or k * radius < DETAIL_MIN_MM or not inside:
+        return None
+    return labels, radius, k
+
+
 def pole_detail(plan: Plan, *, sizes: tuple[tuple[float, float], ...], room: float,
                 caption: Callable[[int], tuple[float, float]], near: float = NEAR_MM) -> PlanDetail | None:
     """The detail of ``plan``'s pole region (see the module docstring), or None when no image
     crowds the pole or no place is found. ``sizes``: the boxes (width, height, mm) the plan
     and its detail together may fill, each part's geometry grown by ``room`` mm for its
     letters; ``caption(k)``: the caption's width and height, mm, of the detail ×k."""
-    crowd = pole_crowd(plan, near)
+    crowd = enlargeable(plan, near)
     if crowd is None:
         return None
-    _, radius = crowd
-    k = _factor(radius)
+    _, radius, k = crowd
     while k is not None and k * radius >= DETAIL_MIN_MM:
         found = _place(plan, k, radius, sizes=sizes, room=room, caption=caption(k))
         if found is not None:
-            return found if found.plan.vectors else None       # letters alone: no detail
+            return found
         k = next((f for f in FACTORS if f < k), None)
     return None
 

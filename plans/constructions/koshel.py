@@ -26,8 +26,8 @@ from ..kinematics import Motion
 from ..kinematics.state import J
 from ..scene import FRAME, DriveKind
 from ..structure import ComplexGroup
-from .detail import pole_crowd
 from .centres import REACH, CentreMark, CentreRay, _segment, _special_points, centre_label
+from .detail import enlargeable
 from .plans import AT_REST, EXTENSION_MM, UNCERTAIN_MM, ConstructionLine, Plan, PlanPoint
 from .scales import fitting_scale
 from .scheme import Scheme, scheme
@@ -279,7 +279,7 @@ def koshel_sheet(motion: Motion, i: int, g: ComplexGroup, plan: Plan, segment: f
 
 def _crowded(plan: Plan) -> str:
     """What step 2 adds when images crowd the pole: they are drawn enlarged in a detail."""
-    crowd = pole_crowd(plan)
+    crowd = enlargeable(plan)
     if crowd is None:
         return ""
     names = ", ".join(sorted(crowd[0]))
