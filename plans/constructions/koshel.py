@@ -27,6 +27,7 @@ from ..kinematics.state import J
 from ..scene import FRAME, DriveKind
 from ..structure import ComplexGroup
 from .centres import REACH, CentreMark, CentreRay, _segment, _special_points, centre_label
+from .detail import enlargeable
 from .plans import AT_REST, EXTENSION_MM, UNCERTAIN_MM, ConstructionLine, Plan, PlanPoint
 from .scales import fitting_scale
 from .scheme import Scheme, scheme
@@ -276,6 +277,16 @@ def koshel_sheet(motion: Motion, i: int, g: ComplexGroup, plan: Plan, segment: f
                        rays, plan, segment, proportion, steps)
 
 
+def _crowded(plan: Plan) -> str:
+    """What step 2 adds when images crowd the pole: they are drawn enlarged in a detail."""
+    crowd = enlargeable(plan)
+    if crowd is None:
+        return ""
+    names = ", ".join(sorted(crowd[0]))
+    return f"; {names} lie within {crowd[1]:.2g} mm of p, so the region round the pole is drawn enlarged " \
+        "beside the plan (its detail, in its own scale)"
+
+
 def _steps(motion, i, g, plan, segment, mu, pname, known, moving, drawn, resting, proportion, x, y, driven) -> tuple[str, ...]:
     """The method step by step (label markup), with the numbers of this position."""
     mech = motion.mechanism
@@ -308,7 +319,7 @@ def _steps(motion, i, g, plan, segment, mu, pname, known, moving, drawn, resting
     out.append(f"2) p{x.lower()} = {segment:g} mm ⊥ {P}{x}, in the sense of ω_{{{base}}} (chosen): an arbitrary length "
                f"— K_{{V}} is not known yet, so the plan's size is chosen and its scale follows; {segment:g} mm is the "
                f"longest of the series 1, 1.5, 2, 2.5, 3, 4, 5, 6, 8 mm × a power of ten, up to {UNCERTAIN_MM:g} mm, "
-               f"that keeps the whole plan within {KOSHEL_MAX_MM:g} × {KOSHEL_MAX_MM:g} mm.")
+               f"that keeps the whole plan within {KOSHEL_MAX_MM:g} × {KOSHEL_MAX_MM:g} mm{_crowded(plan)}.")
     drive = mech.drive
     crank = drive.kind == DriveKind.ROTARY and drive.link == driven.outer.b and drive.pivot is not None
     o = drive.pivot if crank else None

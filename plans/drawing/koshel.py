@@ -4,7 +4,8 @@ landscape.
 
 The two panels are drawn on one canvas by moving its offset between them, so the label
 placer sees every inked element of both. Tagged groups, each measured by ``plans check``:
-the plan (``data-plan="velocity"``, μ = K_V), the segments P_j–X of the proportion
+the plan (``data-plan="velocity"``, μ = K_V; with its detail ×k, μ = K_V/k, when images
+crowd its pole), the segments P_j–X of the proportion
 (``data-plan="centres"``, μ = μl, as on the centres sheet) and the vectors V_S drawn from the
 special points S on the scheme in the plan's scale (``data-plan="bound"``, μ = K_V).
 """
@@ -21,7 +22,7 @@ from .marks import arrow as _arrow, bounds, markup as _markup, vector as _vector
 from .scheme import scheme_layers
 from .sheet import FORMATS, TitleBlock, new_sheet
 from .style import Style
-from .svg import COINCIDE_MM as _COINCIDE_MM, Heading, _tag, centre_rays, plan_layers
+from .svg import COINCIDE_MM as _COINCIDE_MM, Heading, _crowd, _tag, centre_rays, detail_layers, detail_of, plan_layers
 from .text import wrap
 
 __all__ = ["draw_koshel", "PLAN_PANEL_MM", "STEP_TEXT_MM"]
@@ -93,7 +94,6 @@ def draw_koshel(sheet: KoshelSheet, heading: Heading, *, ident: str, style: Styl
         + [xy for _, xy in sheet.specials] + ([sheet.centre.xy] if sheet.centre.xy is not None else [])
     left = bounds(left_pts)
     plan = sheet.plan
-    right = bounds([p.xy for p in plan.points] + [l.start for l in plan.lines] + [l.end for l in plan.lines])
     dwg, canvas = new_sheet(fmt_, left, ident=ident, style=style,
                             block=TitleBlock(heading.mechanism, heading.sheet, heading.position, scales))
     a = canvas.area
@@ -102,6 +102,11 @@ def draw_koshel(sheet: KoshelSheet, heading: Heading, *, ident: str, style: Styl
     text_top = a.y1 - 2.0 - STEP_LEAD_MM * len(rows)
     split = a.x1 - PLAN_PANEL_MM
     top = a.y0 + CAPTION_MM
+    right = bounds([p.xy for p in plan.points] + [l.start for l in plan.lines] + [l.end for l in plan.lines])
+    detail = detail_of(plan, ((PLAN_PANEL_MM, text_top - 2.0 - top),), style, "K_{V}")
+    if detail is not None:      # images crowding the pole: enlarged beside the plan, within the panel
+        right = (min(right[0], detail.box[0]), min(right[1], detail.box[1]), max(right[2], detail.box[2]),
+                 max(right[3], detail.box[3]))
     notes = dwg.g(id=f"{ident}-notes")
     canvas.text(notes, (a.x0 + 3.0, a.y0 + 5.0), f"Scheme, μ_l = {sheet.mu_l:g} m/mm: the centre "
                 f"{_markup(sheet.centre.name)} of link {sheet.base} (Koshel, Fig. 1–2)", size=style.small_text)
@@ -110,7 +115,9 @@ def draw_koshel(sheet: KoshelSheet, heading: Heading, *, ident: str, style: Styl
     _place(canvas, left, (a.x0, top, split, text_top - 2.0))
     _scheme_side(dwg, canvas, sheet, ident, style)
     _place(canvas, right, (split, top, a.x1, text_top - 2.0))
-    plan_layers(dwg, canvas, plan, ident, style)
+    plan_layers(dwg, canvas, plan, ident, style, unlabelled=_crowd(detail))
+    if detail is not None:
+        detail_layers(dwg, canvas, plan, detail, ident, style, "K_{V}")
     sep = dwg.g(id=f"{ident}-steps-rule", stroke=style.colour, stroke_width=fmt(style.thin, 3))
     y = canvas.dy - (text_top - 2.0)        # the rule above the steps, in the canvas's content mm
     canvas.line(sep, (a.x0 - canvas.dx, y), (a.x1 - canvas.dx, y), id=f"{ident}-rule")

@@ -20,7 +20,9 @@ What ``plans check`` reads (:mod:`plans.checking`), on every tagged ``<line>``:
 
 and on each plan's ``<g>``: ``data-mu`` (scale), ``data-plan`` (velocity, acceleration,
 centres, scheme) and, but on the scheme, ``data-vectors`` (how many tagged vectors it
-holds; "0": a plan drawn as the pole alone). The root ``data-precision`` states the
+holds; "0": a plan drawn as the pole alone). A detail of the pole region (images crowding
+the pole, :func:`detail_layers`) is a plan group of its own, same ``data-plan``, ``data-mu``
+= μ/k. The root ``data-precision`` states the
 writer's rounding (mm); the checker takes its tolerance from its own rules, never from it.
 """
 
@@ -33,15 +35,18 @@ from typing import Sequence
 import numpy as np
 
 from ..constructions.centres import CentresSheet
+from ..constructions.detail import PlanDetail, pole_detail
 from ..constructions.plans import Plan
 from ..constructions.scheme import Scheme
 from .canvas import Canvas, fmt
-from .marks import arrow as _arrow, bounds, markup as _markup, vector as _vector
+from .marks import LABEL_ROOM_MM, arrow as _arrow, bounds, markup as _markup, vector as _vector
 from .scheme import scheme_layers
 from .sheet import FORMATS, TitleBlock, choose_format, new_sheet, note_lines
 from .style import Style
+from .text import ASCENT, DESCENT, runs, width as text_width
 
-__all__ = ["Heading", "draw_plan", "draw_scheme", "draw_centres", "plan_layers", "centre_rays", "fmt"]
+__all__ = ["Heading", "draw_plan", "draw_scheme", "draw_centres", "plan_layers", "centre_rays", "fmt", "detail_of",
+           "detail_caption", "detail_layers"]
 
 #: Images closer than this share one label ("p ≡ b"), mm.
 COINCIDE_MM = 0.3
@@ -112,18 +117,71 @@ def _preferred(xy, segments: list[tuple[tuple[float, float], tuple[float, float]
 
 def draw_plan(plan: Plan, heading: Heading, *, ident: str, style: Style = Style(), notes: Sequence[str] = ()) -> str:
     """SVG text of a velocity or acceleration plan; ``notes``: lines of text on the sheet
-    (why a plan is drawn as its pole alone, which scale rule gave way)."""
+    (why a plan is drawn as its pole alone, which scale rule gave way). Images crowding the
+    pole get an enlarged detail beside the plan (:func:`detail_layers`)."""
     coords = [p.xy for p in plan.points] + [l.start for l in plan.lines] + [l.end for l in plan.lines]
     sym = "μ_V" if plan.kind == "velocity" else "μ_a"
     unit = {"velocity": "(m/s)/mm", "acceleration": "(m/s²)/mm"}[plan.kind]
     scale = f"{sym} = {plan.mu:g} {unit}; vector = drawn length × {sym}" if plan.vectors else \
         f"pole {plan.pole} alone: no vector to draw, no scale {sym}"
-    dwg, canvas = _sheet(bounds(coords), heading, scale, ident, style)
-    plan_layers(dwg, canvas, plan, ident, style)
+    detail = detail_of(plan, tuple((a.x1 - a.x0, a.y1 - a.y0) for a in (f.area for f in FORMATS)), style) \
+        if plan.vectors else None
+    box = bounds(coords)
+    if detail is not None:
+        box = (min(box[0], detail.box[0]), min(box[1], detail.box[1]), max(box[2], detail.box[2]),
+               max(box[3], detail.box[3]))
+    dwg, canvas = _sheet(box, heading, scale, ident, style)
+    plan_layers(dwg, canvas, plan, ident, style, unlabelled=_crowd(detail))
+    if detail is not None:
+        detail_layers(dwg, canvas, plan, detail, ident, style)
     if notes:
         note_lines(canvas, dwg.add(dwg.g(id=f"{ident}-notes")), notes, style)
     canvas.place_labels(dwg.add(dwg.g(id=f"{ident}-leaders")))   # outside the plan: not vectors
     return dwg.tostring()
+
+
+def detail_caption(plan: Plan, k: int, symbol: str | None = None) -> str:
+    """The statement of a detail ×k of ``plan``: its factor and its own scale, written
+    ``symbol`` (μ_V or μ_a by the plan's kind when None)."""
+    sym = symbol or ("μ_V" if plan.kind == "velocity" else "μ_a")
+    unit = {"velocity": "(m/s)/mm", "acceleration": "(m/s²)/mm"}.get(plan.kind, "per mm")
+    return f"detail ×{k}, {sym} = {plan.mu / k:.4g} {unit}"
+
+
+def detail_of(plan: Plan, sizes: tuple[tuple[float, float], ...], style: Style,
+              symbol: str | None = None) -> PlanDetail | None:
+    """The detail of ``plan``'s pole region (:func:`~plans.constructions.detail.pole_detail`)
+    placed so that the plan and it, with room for their letters, fit one of ``sizes`` (mm)."""
+    def caption(k: int) -> tuple[float, float]:
+        return text_width(runs(detail_caption(plan, k, symbol)), style.small_text, False), \
+            (ASCENT + DESCENT) * style.small_text + 0.5
+
+    return pole_detail(plan, sizes=sizes, room=LABEL_ROOM_MM, caption=caption)
+
+
+def _crowd(detail: PlanDetail | None) -> frozenset[str]:
+    """The images the detail names, but the pole (their letters are left off the plan itself)."""
+    if detail is None:
+        return frozenset()
+    return frozenset(p.label for p in detail.plan.points if p.label != detail.plan.pole)
+
+
+def detail_layers(dwg, canvas: Canvas, plan: Plan, detail: PlanDetail, ident: str, style: Style,
+                  symbol: str | None = None) -> None:
+    """The detail ×k of ``plan``'s pole region: a thin circle round the region on the plan,
+    the detail's own circle, its caption and the detail itself, a plan group of its own
+    (``{ident}-detail-plan``, μ/k) measured by ``plans check`` like the plan."""
+    marks = dwg.g(id=f"{ident}-detail-marks", stroke=style.construction_colour, stroke_width=fmt(style.thin, 3),
+                  fill="none")
+    canvas.circle(marks, detail.middle, detail.region, id=f"{ident}-detail-region")
+    canvas.circle(marks, detail.centre, detail.frame, id=f"{ident}-detail-frame")
+    dwg.add(marks)
+    text = dwg.g(id=f"{ident}-detail-caption")
+    x, y = canvas.paper(detail.caption)
+    canvas.text(text, (x, y - DESCENT * style.small_text - 0.25), detail_caption(plan, detail.k, symbol),
+                size=style.small_text, ident=f"{ident}-detail-statement")
+    dwg.add(text)
+    plan_layers(dwg, canvas, detail.plan, f"{ident}-detail", style)
 
 
 def draw_empty(kind: str, heading: Heading, *, ident: str, style: Style = Style(), notes: Sequence[str] = ()) -> str:
@@ -159,9 +217,11 @@ def plan_group(dwg, canvas: Canvas, plan, kind: str, ident: str, style: Style):
     return g
 
 
-def plan_layers(dwg, canvas: Canvas, plan: Plan, ident: str, style: Style) -> None:
+def plan_layers(dwg, canvas: Canvas, plan: Plan, ident: str, style: Style, *,
+                unlabelled: frozenset[str] = frozenset()) -> None:
     """A plan's group on ``canvas``: construction lines, tagged vectors with their heads, the
-    images' dots, and label requests (placed by the caller's ``canvas.place_labels``)."""
+    images' dots, and label requests (placed by the caller's ``canvas.place_labels``); the
+    images in ``unlabelled`` (named on a detail instead) keep their dot but get no letter."""
     g = plan_group(dwg, canvas, plan, plan.kind, ident, style)
     for k, v in enumerate(plan.vectors):
         colour = style.vector_colour if v.kind in ("absolute", "relative") else style.component_colour
@@ -180,7 +240,10 @@ def plan_layers(dwg, canvas: Canvas, plan: Plan, ident: str, style: Style) -> No
     for k, grp in enumerate(groups):
         xy = grp[0].xy
         canvas.circle(labels, xy, 0.45, filled=True, id=f"{ident}-d{k}")
-        text = " ≡ ".join(_markup(p.label) for p in grp)
+        named = [p for p in grp if p.label not in unlabelled]
+        if not named:
+            continue
+        text = " ≡ ".join(_markup(p.label) for p in named)
         canvas.label(labels, xy, text, size=style.text, prefer=_preferred(xy, segments, centre), ident=f"{ident}-l{k}",
                      digits=False, near=0.5)
     g.add(labels)

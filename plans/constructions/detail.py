@@ -1,0 +1,210 @@
+"""The enlarged detail of a plan's pole region, when images crowd the pole.
+
+A plan is scaled by its largest vector, so images of slow points (or small components) may
+gather within a few millimetres of the pole, their letters crowding. :func:`pole_detail`
+finds such a crowd (:func:`pole_crowd`: two or more images, not at the pole itself, within
+:data:`NEAR_MM` of it), enlarges the region round the pole × k (k from :data:`FACTORS`, the
+largest that keeps the enlarged crowd within :data:`DETAIL_MM` of its pole; none when even
+that leaves it under :data:`DETAIL_MIN_MM`) and redraws the vectors that lie wholly inside the
+region at μ/k (none there: no detail): the detail is a :class:`Plan` of its own (same kind,
+μ/k), so every vector measures its value there too and its vector equations close.
+
+Where the detail goes: beside the plan, at the free spot (no vector, construction line or
+image within :data:`CLEAR_MM`) that keeps the plan and the detail in the smallest box that
+still fits one of the sizes the caller allows (a sheet's drawing area). Everything here is
+geometry in plan millimetres (y up, the main plan's pole at the origin); it draws nothing.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from typing import Callable
+
+import numpy as np
+import shapely
+
+from .plan_values import ConstructionLine, Plan, PlanPoint
+
+__all__ = ["PlanDetail", "pole_crowd", "enlargeable", "pole_detail", "NEAR_MM", "DETAIL_MM", "DETAIL_MIN_MM", "FACTORS", "CLEAR_MM"]
+
+#: Images closer to the pole than this crowd it, mm.
+NEAR_MM = 5.0
+#: An image closer to the pole than this is at the pole (a fixed point's image, one label with it), mm.
+AT_POLE_MM = 1e-6
+#: The enlarged crowd's largest distance from the detail's pole, mm (at most).
+DETAIL_MM = 60.0
+#: … and at least this, else the crowd stays as it is (images within a hundredth of a millimetre
+#: share one letter on the plan, as coinciding), mm.
+DETAIL_MIN_MM = 10.0
+#: Round enlargement factors, tried largest first.
+FACTORS = (1000, 500, 200, 100, 50, 20, 10, 5, 2)
+#: The detail's frame (a circle) runs this far beyond its farthest image, as a part of that distance.
+FRAME_GROW = 0.2
+#: … and at least this far, mm (room for the images' letters inside the frame).
+FRAME_ROOM_MM = 6.0
+#: The circle marking the region on the plan: radius at least, mm.
+REGION_MIN_MM = 1.5
+#: Free space between the detail (frame, caption) and the plan's lines and images, mm.
+CLEAR_MM = 8.0
+#: Gap between the frame and its caption, mm.
+CAPTION_GAP_MM = 1.5
+#: Step of the grid of places tried for the detail, mm.
+STEP_MM = 2.5
+
+
+@dataclass(frozen=True)
+class PlanDetail:
+    """The detail ×``k`` of a plan's pole region.
+
+    ``plan``: the images within ``radius`` mm of the pole and the vectors between them, at
+    μ/k; the region round the pole is the circle ``region`` (radius, mm) round ``middle``
+    (the middle of the pole and the crowding images, plan mm), drawn × k as the detail's
+    frame, the circle ``frame`` round ``centre`` (mm, in the main plan's frame; ``middle``
+    enlarged goes there); ``caption``: the lower left corner of the caption's box (plan mm)
+    and ``box`` (x0, y0, x1, y1) all the detail takes on the sheet, caption and the letters'
+    room included."""
+
+    k: int
+    plan: Plan
+    radius: float
+    middle: tuple[float, float]
+    region: float
+    centre: tuple[float, float]
+    frame: float
+    caption: tuple[float, float]
+    box: tuple[float, float, float, float]
+
+    @property
+    def mu(self) -> float:
+        """The detail's scale, μ/k (unit of the plan per mm)."""
+        return self.plan.mu
+
+
+def pole_crowd(plan: Plan, near: float = NEAR_MM) -> tuple[tuple[str, ...], float] | None:
+    """The labels of the images that crowd the pole (within ``near`` mm of it, not at it; two
+    or more distinct places) and their largest distance from it (mm); None when there is no
+    crowd, or when the plan as a whole is no larger than four times ``near`` (nothing to
+    enlarge it against)."""
+    pole = plan.point(plan.pole)
+    dist = {p.label: math.dist(p.xy, pole) for p in plan.points}
+    crowd = [p for p in plan.points if AT_POLE_MM < dist[p.label] < near]
+    places: list[tuple[float, float]] = []
+    for p in crowd:
+        if not any(math.dist(p.xy, q) < AT_POLE_MM for q in places):
+            places.append(p.xy)
+    if len(places) < 2 or max(dist.values()) < 4.0 * near:
+        return None
+    return tuple(p.label for p in crowd), max(dist[p.label] for p in crowd)
+
+
+def _factor(radius: float) -> int | None:
+    return next((k for k in FACTORS if k * radius <= DETAIL_MM), None)
+
+
+def enlargeable(plan: Plan, near: float = NEAR_MM) -> tuple[tuple[str, ...], float, int] | None:
+    """The crowd of ``plan``'s pole (:func:`pole_crowd`: labels, radius mm) and the largest factor
+    k that keeps it within DETAIL_MM, when a detail is worth drawing: k × radius at least
+    DETAIL_MIN_MM and a vector wholly inside the region; else None."""
+    crowd = pole_crowd(plan, near)
+    if crowd is None:
+        return None
+    labels, radius = crowd
+    k = _factor(radius)
+    pole = plan.point(plan.pole)
+    inside = [v for v in plan.vectors
+              if math.dist(v.tail, pole) <= _reach(radius) and math.dist(v.head, pole) <= _reach(radius)]
+    if k is None or k * radius < DETAIL_MIN_MM or not inside:
+        return None
+    return labels, radius, k
+
+
+def pole_detail(plan: Plan, *, sizes: tuple[tuple[float, float], ...], room: float,
+                caption: Callable[[int], tuple[float, float]], near: float = NEAR_MM) -> PlanDetail | None:
+    """The detail of ``plan``'s pole region (see the module docstring), or None when no image
+    crowds the pole or no place is found. ``sizes``: the boxes (width, height, mm) the plan
+    and its detail together may fill, each part's geometry grown by ``room`` mm for its
+    letters; ``caption(k)``: the caption's width and height, mm, of the detail ×k."""
+    crowd = enlargeable(plan, near)
+    if crowd is None:
+        return None
+    _, radius, k = crowd
+    while k is not None and k * radius >= DETAIL_MIN_MM:
+        found = _place(plan, k, radius, sizes=sizes, room=room, caption=caption(k))
+        if found is not None:
+            return found
+        k = next((f for f in FACTORS if f < k), None)
+    return None
+
+
+def _place(plan: Plan, k: int, radius: float, *, sizes, room: float, caption) -> PlanDetail | None:
+    """The detail ×k at the best free place, or None when none fits ``sizes``."""
+    pole = np.array(plan.point(plan.pole), dtype=float)
+    inner = np.array([p.xy for p in plan.points if math.dist(p.xy, pole) <= _reach(radius)], dtype=float)
+    middle = (inner.min(axis=0) + inner.max(axis=0)) / 2.0
+    spread = float(np.max(np.linalg.norm(inner - middle, axis=1)))
+    frame = max((1.0 + FRAME_GROW) * k * spread, k * spread + FRAME_ROOM_MM)
+    region = max(frame / k, REGION_MIN_MM)
+    cw, ch = caption
+    # the detail's content about its pole: the frame, the caption above it
+    fx0, fy0 = -frame, -frame
+    fx1 = max(frame, -frame + cw)
+    fy1 = frame + CAPTION_GAP_MM + ch
+    ink = shapely.union_all([shapely.LineString([v.tail, v.head]) for v in plan.vectors if v.length > 0]
+                            + [shapely.LineString([l.start, l.end]) for l in plan.lines]
+                            + [shapely.Point(p.xy) for p in plan.points]
+                            + [shapely.Point(middle).buffer(region, quad_segs=8)])
+    obstacles = ink.buffer(CLEAR_MM, quad_segs=4)
+    shapely.prepare(obstacles)
+    gx0, gy0, gx1, gy1 = shapely.bounds(ink)
+    xs = np.arange(math.floor((gx0 - fx1 - CLEAR_MM) / STEP_MM), math.ceil((gx1 - fx0 + CLEAR_MM) / STEP_MM) + 1)
+    ys = np.arange(math.floor((gy0 - fy1 - CLEAR_MM) / STEP_MM), math.ceil((gy1 - fy0 + CLEAR_MM) / STEP_MM) + 1)
+    cx, cy = np.meshgrid(xs * STEP_MM, ys * STEP_MM, indexing="xy")
+    cx, cy = cx.ravel(), cy.ravel()
+    free = ~shapely.intersects(shapely.box(cx + fx0, cy + fy0, cx + fx1, cy + fy1), obstacles)
+    fx0, fy0, fx1, fy1 = fx0 - room, fy0 - room, fx1 + room, fy1 + room
+    bx0 = np.minimum(gx0 - room, cx + fx0)
+    by0 = np.minimum(gy0 - room, cy + fy0)
+    bx1 = np.maximum(gx1 + room, cx + fx1)
+    by1 = np.maximum(gy1 + room, cy + fy1)
+    w, h = bx1 - bx0, by1 - by0
+    fits = np.zeros(len(cx), dtype=bool)
+    for sw, sh in sizes:
+        fits |= (w <= sw) & (h <= sh)
+    ok = np.flatnonzero(free & fits)
+    if not len(ok):
+        return None
+    score = np.round(w * h, 6)[ok]
+    far = np.round(np.hypot(cx - middle[0], cy - middle[1]), 6)[ok]
+    best = ok[np.lexsort((cy[ok], cx[ok], far, score))[0]]
+    centre = (float(cx[best]), float(cy[best]))
+    mid = (float(middle[0]), float(middle[1]))
+    return PlanDetail(k, _enlarged(plan, k, radius, mid, centre), radius, mid, region, centre, frame,
+                      (centre[0] - frame, centre[1] + frame + CAPTION_GAP_MM),
+                      (float(centre[0] + fx0), float(centre[1] + fy0), float(centre[0] + fx1),
+                       float(centre[1] + fy1)))
+
+
+def _reach(radius: float) -> float:
+    """How far from the pole an image is inside the region of crowd ``radius``, mm."""
+    return radius * (1.0 + 1e-9) + AT_POLE_MM
+
+
+def _enlarged(plan: Plan, k: int, radius: float, middle: tuple[float, float], centre: tuple[float, float]) -> Plan:
+    """The images within ``radius`` of the pole and the vectors between them, × k about
+    ``middle``, which goes to ``centre``; at μ/k."""
+    pole = plan.point(plan.pole)
+
+    def inside(xy) -> bool:
+        return math.dist(xy, pole) <= _reach(radius)
+
+    def s(xy) -> tuple[float, float]:
+        return (centre[0] + k * (float(xy[0]) - middle[0]), centre[1] + k * (float(xy[1]) - middle[1]))
+
+    points = tuple(PlanPoint(p.label, s(p.xy)) for p in plan.points if inside(p.xy))
+    vectors = tuple(replace(v, tail=s(v.tail), head=s(v.head)) for v in plan.vectors
+                    if inside(v.tail) and inside(v.head))
+    labels = {p.label for p in points}
+    similar = tuple((link, labs) for link, labs in plan.similar if set(labs) <= labels)
+    lines: tuple[ConstructionLine, ...] = ()
+    return replace(plan, mu=plan.mu / k, points=points, vectors=vectors, lines=lines, similar=similar)
