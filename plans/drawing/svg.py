@@ -145,7 +145,17 @@ def detail_caption(plan: Plan, k: int, symbol: str | None = None) -> str:
     ``symbol`` (μ_V or μ_a by the plan's kind when None)."""
     sym = symbol or ("μ_V" if plan.kind == "velocity" else "μ_a")
     unit = {"velocity": "(m/s)/mm", "acceleration": "(m/s²)/mm"}.get(plan.kind, "per mm")
-    return f"detail ×{k}, {sym} = {plan.mu / k:.4g} {unit}"
+    return f"detail ×{k}, {sym} = {_decimal(plan.mu / k)} {unit}"
+
+
+def _decimal(x: float, digits: int = 4) -> str:
+    """``x`` to ``digits`` significant digits, written without an exponent between 1e-9 and
+    1e9 (0.00001693, as a teacher writes a scale), with one beyond."""
+    if x == 0 or not 1e-9 <= abs(x) < 1e9:
+        return f"{x:.{digits}g}"
+    decimals = max(0, digits - 1 - math.floor(math.log10(abs(x))))
+    text = f"{round(x, decimals):.{decimals}f}"
+    return text.rstrip("0").rstrip(".") if "." in text else text
 
 
 def detail_of(plan: Plan, sizes: tuple[tuple[float, float], ...], style: Style,
