@@ -19,6 +19,7 @@ import numpy as np
 
 from ..kinematics import Motion
 from ..scene import FRAME, DriveKind
+from .scheme_drive import Cylinder, DriveArrow, cylinders, drive_arrows
 
 __all__ = ["Scheme", "Block", "Guide", "Arc", "scheme", "BLOCK_MM", "HEAD_MM", "SENSE_HEAD_MM"]
 
@@ -108,6 +109,8 @@ class Scheme:
     reference: float = 0.0                           # direction φ1 is measured from, deg
     dots: tuple[str, ...] = ()                       # points on a link that are no pair (coupler points)
     arcs: tuple[Arc, ...] = ()                       # φ1, ω1, ε1 and, on request, ω_j, ε_j
+    cylinders: tuple[Cylinder, ...] = ()             # hydraulic cylinders: barrel, piston, rod
+    inputs: tuple[DriveArrow, ...] = ()              # a linear drive's input arrows v (and a)
 
 
 def _xy(v: np.ndarray) -> tuple[float, float]:
@@ -152,11 +155,40 @@ def scheme(motion: Motion, i: int, mu_l: float, *, senses: bool = False) -> Sche
         arcs += _sense_arcs(motion, i, points, blocks, (d.link,))
     if senses:
         arcs += _sense_arcs(motion, i, points, blocks, tuple(n for n in mech.moving if n != d.link))
+    cyls = cylinders(motion, i, mu_l)
+    block = next(((b.center, BLOCK_MM[1] / 2) for b in blocks if b.link == d.link), None)
+    in_cyl = {c.barrel_link for c in cyls} | {c.rod_link for c in cyls}
+    segments = _segments(points, [(n, p) for n, p in links if n not in in_cyl], blocks, guides)
     return Scheme(mu_l=mu_l, points=points, links=links, joints=joints, supports=supports,
-                  blocks=tuple(blocks), guides=tuple(guides),
+                  blocks=tuple(blocks), guides=tuple(guides), cylinders=cyls,
+                  inputs=drive_arrows(motion, i, mu_l, block, cyls, segments),
                   drive_pivot=d.pivot if d.kind == DriveKind.ROTARY else None, omega=motion.drive_rates(i)[0],
                   epsilon=motion.drive_rates(i)[1],
                   phi=phi, reference=reference if reference is not None else 0.0, dots=dots, arcs=tuple(arcs))
+
+
+def _segments(points, links, blocks, guides) -> np.ndarray:
+    """The scheme's lines as segments (m, 2, 2), mm: bars, plates' edges, blocks' sides, guides."""
+    segs = []
+    for _, pts in links:
+        xy = [points[p] for p in pts]
+        if len(xy) == 2:
+            segs.append((xy[0], xy[1]))
+        elif len(xy) > 2:
+            segs += [(xy[k], xy[(k + 1) % len(xy)]) for k in range(len(xy))]
+    for b in blocks:
+        u = np.array([math.cos(math.radians(b.angle)), math.sin(math.radians(b.angle))])
+        n = np.array([-u[1], u[0]])
+        c = [np.add(b.center, sx * BLOCK_MM[0] / 2 * u + sy * BLOCK_MM[1] / 2 * n)
+             for sx, sy in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
+        segs += [(c[k], c[(k + 1) % 4]) for k in range(4)]
+        if b.pin is not None:
+            segs.append((b.pin, b.center))
+    for gd in guides:
+        segs.append((gd.start, gd.end))
+        if gd.stem is not None:
+            segs.append(gd.stem)
+    return np.array(segs, dtype=float).reshape(-1, 2, 2)
 
 
 def _blocks(motion: Motion, i: int, mu_l: float, points) -> tuple[list[Block], dict[int, float]]:
