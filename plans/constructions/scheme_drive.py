@@ -168,19 +168,24 @@ def drive_arrows(motion: Motion, i: int, mu_l: float, block: tuple[Point, float]
         a, b = np.asarray(cyl.barrel[1]), np.asarray(cyl.rod[1])
         t_mouth, t_pin = float(np.dot(a - cyl.rod[0], u)), float(np.dot(b - cyl.rod[0], u))
         mid = np.asarray(cyl.rod[0]) + 0.5 * (t_mouth + t_pin) * u
-        base = BARREL_MM / 2 + ARROW_GAP_MM
-        room = []
-        for side in (1.0, -1.0):
-            c = mid + side * (base + ARROW_STEP_MM / 2) * n
-            pts = c + np.linspace(-ARROW_MM / 2 - 3.0, ARROW_MM / 2 + 3.0, 9)[:, None] * u
-            room.append(clearance(pts, segments))
-        side = 1.0 if room[0] >= room[1] else -1.0
+        base, sides = BARREL_MM / 2 + ARROW_GAP_MM, (1.0, -1.0)
     elif block is not None:
         mid = np.asarray(block[0])
-        base, side = block[1] + ARROW_GAP_MM, 1.0
+        base, sides = block[1] + ARROW_GAP_MM, (1.0,)    # the hatching is on the other side
     else:
         mid = motion.position(pr.label)[i] / mu_l
-        base, side = ARROW_GAP_MM, 1.0
+        base, sides = ARROW_GAP_MM, (1.0,)
+    # the side and shift along the guide (none first) that keep the arrows farthest from other lines
+    best = None
+    for shift in (0.0, ARROW_MM / 2, -ARROW_MM / 2):
+        for side in sides:
+            c = mid + shift * u + side * (base + ARROW_STEP_MM / 2) * n
+            pts = c + np.linspace(-ARROW_MM / 2 - 2.0, ARROW_MM / 2 + 2.0, 9)[:, None] * u
+            room = min(clearance(pts, segments), ARROW_STEP_MM / 2 + 2.5)   # enough room is enough
+            if best is None or room > best[0] + 1e-9:
+                best = (room, shift, side)
+    _, shift, side = best
+    mid = mid + shift * u
     sub = f"_{{{d.link}{pr.guide}}}" if d.kind == DriveKind.CYLINDER else f"_{{{d.link}}}"
     rates = motion.drive_rates(i)
     out, off = [], base

@@ -191,8 +191,8 @@ def scheme_layers(dwg, canvas: Canvas, sch: Scheme, ident: str, style: Style) ->
         mid = xy.mean(axis=0)
         if name in barrels:   # by the barrel
             c = barrels[name]
-            mid = np.mean(c.barrel, axis=0)
-            prefer, near = np.array([-c.axis[1], c.axis[0]]), 0.5 * BARREL_MM + 0.5
+            prefer = np.array([-c.axis[1], c.axis[0]])
+            mid, near = np.mean(c.barrel, axis=0) + 0.5 * BARREL_MM * prefer, 0.6
         elif name in rods:    # by the rod where it leaves the barrel
             c = rods[name]
             mid = 0.5 * np.add(np.mean(c.barrel[1:3], axis=0), c.rod[1])
