@@ -293,6 +293,7 @@ def _drive_arcs(d, rates: tuple[float, float], c: np.ndarray, length: float, cra
     sweep = math.copysign(abs(phi) % 360.0, phi)
     taken: list[np.ndarray] = [_support_segments(c)]
     rooms: list[np.ndarray] = []                      # points kept for labels: the φ1 label's
+    arrows: list[np.ndarray] = []                     # the arc arrows placed (as segments)
     if abs(sweep) > 1e-9:
         arcs.append(Arc("phi", d.link, centre, r_phi, reference, sweep, "φ" + _sub(d.link)))
         taken.append(_polyline(_arc_samples(c, r_phi, reference, sweep)))
@@ -305,10 +306,9 @@ def _drive_arcs(d, rates: tuple[float, float], c: np.ndarray, length: float, cra
         if value == 0.0:
             continue
         s = math.copysign(1.0, value)
-        r, mid, span = _place_arrow(c, length, r_phi, crank, s, segments, crank_seg, pins, taken, rooms)
+        r, mid, span = _place_arrow(c, length, r_phi, crank, s, segments, crank_seg, pins, taken, rooms, arrows)
         arcs.append(Arc(kind, d.link, centre, r, mid - s * span / 2, s * span, sym + _sub(d.link), HEAD_MM))
-        pts = _arc_samples(c, r, mid - span / 2, span)
-        taken.append(_polyline(pts))
+        arrows.append(_polyline(_arc_samples(c, r, mid - span / 2, span)))
         end = math.radians(mid + s * span / 2)
         rooms.append(c + (r + 3.0) * np.array([math.cos(end), math.sin(end)]))
     return arcs
@@ -320,6 +320,8 @@ PIN_CLEAR_MM = 2.6
 ROOM_CLEAR_MM = 2.5
 #: Room kept free beside an arc arrow's head for its label (3 mm out from the head), mm.
 LABEL_CLEAR_MM = 1.5
+#: Least distance between two arc arrows (their heads are 2 mm wide), mm.
+ARROW_SEP_MM = 3.5
 #: How far from the pivot a crank's pin keeps its arcs, mm.
 PIN_ROOM_MM = 2.5
 
@@ -339,16 +341,16 @@ def _clear(pts: np.ndarray, segments: list[np.ndarray]) -> float:
 
 def _place_arrow(c: np.ndarray, length: float, r_phi: float, crank: float, sense: float, segments: np.ndarray,
                  crank_seg: np.ndarray, pins: np.ndarray, taken: list[np.ndarray],
-                 rooms: list[np.ndarray]) -> tuple[float, float, float]:
+                 rooms: list[np.ndarray], arrows: list[np.ndarray]) -> tuple[float, float, float]:
     """(radius mm, middle direction deg, span deg) of a drive arc arrow about pivot ``c``: the
     first candidate, in the order a textbook prefers (across the crank inside its pin, then
     outside it, then beside the crank, then behind the pivot; the widest span first), that keeps
     the clearances (ARC_CLEAR_MM from the other links' lines, the support and the arcs already
-    placed; PIN_CLEAR_MM from pins; ROOM_CLEAR_MM from labels' rooms) and leaves room for its
+    placed, ARROW_SEP_MM from the arc ``arrows`` placed; PIN_CLEAR_MM from pins; ROOM_CLEAR_MM from labels' rooms) and leaves room for its
     own label by its head (``sense``: +1 the head at the CCW end); failing all, the candidate with the largest shortfall-free margin."""
     others = segments if len(segments) == 0 else \
         segments[[not (np.allclose(sg, crank_seg[0]) or np.allclose(sg, crank_seg[0][::-1])) for sg in segments]]
-    inside = [r for r in np.arange(r_phi + 4.0, length - PIN_CLEAR_MM + 1e-9, 1.5)]
+    inside = [r for r in r_phi + 4.0 + 1.5 * np.arange(12) if r <= length - PIN_CLEAR_MM + 1e-9]
     outside = [length + PIN_CLEAR_MM + 1.5 + 1.5 * k for k in range(6)]
     radii = inside + outside
     behind = [max(r_phi + 4.0, 8.5) + 1.5 * k for k in range(6)]
@@ -360,11 +362,11 @@ def _place_arrow(c: np.ndarray, length: float, r_phi: float, crank: float, sense
         for span, off, r in order:
             mid = crank + off
             pts = _arc_samples(c, r, mid - span / 2, span)
-            lines = _clear(pts, [others] + taken)
+            lines = min(_clear(pts, [others] + taken), _clear(pts, arrows) + ARC_CLEAR_MM - ARROW_SEP_MM)
             pin = float(np.min(np.linalg.norm(pts[:, None] - pins[None], axis=-1))) if len(pins) else math.inf
             head = math.radians(mid + sense * span / 2)
             room = c + (r + 3.0) * np.array([[math.cos(head), math.sin(head)]])
-            label = min(_clear(room, [segments] + taken),
+            label = min(_clear(room, [segments] + taken + arrows),
                         float(np.min(np.linalg.norm(room - pins, axis=-1))) if len(pins) else math.inf)
             kept = float(np.min(np.linalg.norm(pts[:, None] - np.array(rooms)[None], axis=-1))) if rooms else math.inf
             margin = min(lines - ARC_CLEAR_MM, pin - PIN_CLEAR_MM, kept - ROOM_CLEAR_MM, label - LABEL_CLEAR_MM)

@@ -77,7 +77,9 @@ def _cylinder(canvas: Canvas, g, cyl: Cylinder, ident: str, style: Style) -> Non
     el = canvas.line(g, cyl.rod[0], cyl.rod[1], width=style.link, stroke_width=w, id=f"{key}rod")
     el.attribs["data-part"] = "rod"
     el.attribs["data-link"] = cyl.rod_link
-    el = canvas.polygon(g, cyl.barrel, width=style.link, stroke_width=w, stroke_linejoin="round", id=f"{key}barrel")
+    # an outline (the rod shows inside it) that labels keep out of, as of a filled shape
+    el = canvas.polygon(g, cyl.barrel, filled=True, width=style.link, stroke_width=w, stroke_linejoin="round",
+                        id=f"{key}barrel")
     el.attribs["data-part"] = "barrel"
     el.attribs["data-link"] = cyl.barrel_link
     el = canvas.line(g, cyl.piston[0], cyl.piston[1], width=1.5 * style.link, stroke_width=fmt(1.5 * style.link, 3),
@@ -192,7 +194,11 @@ def scheme_layers(dwg, canvas: Canvas, sch: Scheme, ident: str, style: Style) ->
         if name in barrels:   # by the barrel
             c = barrels[name]
             prefer = np.array([-c.axis[1], c.axis[0]])
-            mid, near = np.mean(c.barrel, axis=0) + 0.5 * BARREL_MM * prefer, 0.6
+            if any(float(np.dot(np.subtract(a.start, c.rod[0]), prefer)) < 0 for a in sch.inputs if a.link == c.rod_link):
+                prefer = -prefer   # the drive's arrows' side (they stand by the mouth), clear of the piston's name
+            bottom = 0.5 * np.add(c.barrel[0], c.barrel[3])
+            top = 0.5 * np.add(c.barrel[1], c.barrel[2])
+            mid, near = bottom + 0.25 * (top - bottom) + 0.5 * BARREL_MM * prefer, 0.6   # by the barrel's foot
         elif name in rods:    # by the rod where it leaves the barrel
             c = rods[name]
             mid = 0.5 * np.add(np.mean(c.barrel[1:3], axis=0), c.rod[1])
