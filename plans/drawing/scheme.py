@@ -78,8 +78,8 @@ def _cylinder(canvas: Canvas, g, cyl: Cylinder, ident: str, style: Style) -> Non
     el.attribs["data-part"] = "rod"
     el.attribs["data-link"] = cyl.rod_link
     # an outline (the rod shows inside it) that labels keep out of, as of a filled shape
-    el = canvas.polygon(g, cyl.barrel, filled=True, width=style.link, stroke_width=w, stroke_linejoin="round",
-                        id=f"{key}barrel")
+    el = canvas.polygon(g, cyl.barrel, width=style.link, stroke_width=w, stroke_linejoin="round", id=f"{key}barrel")
+    canvas.keep_out(cyl.barrel)
     el.attribs["data-part"] = "barrel"
     el.attribs["data-link"] = cyl.barrel_link
     el = canvas.line(g, cyl.piston[0], cyl.piston[1], width=1.5 * style.link, stroke_width=fmt(1.5 * style.link, 3),
