@@ -228,3 +228,25 @@ def test_the_crank_arcs_keep_clear_of_each_other(tmp_path, stem, angle, epsilon)
             assert all(shapes[a].distance(_shape(els[f"s-link{name}"]).boundary
                        if els[f"s-link{name}"].tag.endswith("polygon") else _shape(els[f"s-link{name}"])) > 0.8
                        for a in ("omega", "epsilon") if a in kinds), name
+
+
+@pytest.mark.parametrize("stem", ["hydraulic_boom", "oscillating_cylinder"])
+def test_no_label_sits_in_a_barrel(stem):
+    """Labels keep out of the barrel (the rod shows inside it): no text box meets its inside."""
+    motion, mu = _solve(EX[stem])
+    for i in range(len(motion)):
+        sch, els = _drawn(motion, mu, i)
+        inside = _shape(_by_part(els, "barrel")[0]).buffer(-0.35)      # within the outline's stroke
+        for el in els.values():
+            if el.get("class") == "label" and el.tag.endswith("text") and el.get("x"):
+                b = _label_box(el)
+                assert not inside.intersects(shapely.box(b.x0, b.y0, b.x1, b.y1)), (i, "".join(el.itertext()))
+
+
+def test_the_scheme_with_a_cylinder_is_byte_identical_when_drawn_again():
+    from plans.drawing import Heading
+    from plans.drawing.svg import draw_scheme
+    motion, mu = _solve(EX["hydraulic_boom"])
+    texts = [draw_scheme(scheme(motion, 1, mu), Heading("m", "Kinematic scheme", "p"), formula="f", ident="s")
+             for _ in range(2)]
+    assert texts[0] == texts[1] and "data-part=\"barrel\"" in texts[0]
