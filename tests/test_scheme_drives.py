@@ -5,7 +5,6 @@ positions (× 1/μl)."""
 
 from __future__ import annotations
 
-import math
 import tomllib
 
 import numpy as np

@@ -3,11 +3,13 @@ coordinates divided by μl. Symbols (joints, blocks, supports, arc arrows) keep 
 
 Besides the links, pairs and guides, the scheme holds what a textbook scheme marks: the
 driving crank's angle φ1 (an arc from the reference direction through the pivot to the
-crank), the arc arrows ω1 and, when it is not zero, ε1 (their senses from their signs), and
+crank), the arc arrows ω1 and, when it is not zero, ε1 (their senses from their signs; each
+placed where it keeps clear of φ1, the pins, the other links and the other arrow), and
 on request (``senses=True``) the arc arrows ω_j, ε_j of every other moving link. A slotted
 link's slot is joined to the rest of its link (a stem, as the yoke of a Scotch yoke), and two
 blocks on one pin are drawn apart: the one on the frame guide is moved along its guide and
-carried from the pin by a short rod, as textbooks draw a block on a rod.
+carried from the pin by a short rod, as textbooks draw a block on a rod. Hydraulic cylinders
+(barrel, piston, rod) and a linear drive's input arrows v, a come from :mod:`.scheme_drive`.
 """
 
 from __future__ import annotations
@@ -342,14 +344,17 @@ def _clear(pts: np.ndarray, segments: list[np.ndarray]) -> float:
 def _place_arrow(c: np.ndarray, length: float, r_phi: float, crank: float, sense: float, segments: np.ndarray,
                  crank_seg: np.ndarray, pins: np.ndarray, taken: list[np.ndarray],
                  rooms: list[np.ndarray], arrows: list[np.ndarray]) -> tuple[float, float, float]:
-    """(radius mm, middle direction deg, span deg) of a drive arc arrow about pivot ``c``: the
-    first candidate, in the order a textbook prefers (across the crank inside its pin, then
-    outside it, then beside the crank, then behind the pivot; the widest span first), that keeps
-    the clearances (ARC_CLEAR_MM from the other links' lines, the support and the arcs already
-    placed, ARROW_SEP_MM from the arc ``arrows`` placed; PIN_CLEAR_MM from pins; ROOM_CLEAR_MM from labels' rooms) and leaves room for its
-    own label by its head (``sense``: +1 the head at the CCW end); failing all, the candidate with the largest shortfall-free margin."""
-    others = segments if len(segments) == 0 else \
-        segments[[not (np.allclose(sg, crank_seg[0]) or np.allclose(sg, crank_seg[0][::-1])) for sg in segments]]
+    """(radius mm, middle direction deg, span deg) of a drive arc arrow about pivot ``c``.
+
+    The first candidate, in the order a textbook prefers (across the crank inside its pin, then
+    outside the pin; beside the crank; behind the pivot; wider spans first), that keeps clear:
+    ARC_CLEAR_MM of the other links' lines, the support and φ1 (``taken``), ARROW_SEP_MM of the
+    arc arrows already placed (``arrows``), PIN_CLEAR_MM of the pins, ROOM_CLEAR_MM of the
+    labels' rooms (``rooms``), and leaves LABEL_CLEAR_MM for its own label by its head
+    (``sense`` +1: the head at the counter-clockwise end). Failing all: the one that misses
+    least."""
+    crank_line = [not (np.allclose(sg, crank_seg[0]) or np.allclose(sg, crank_seg[0][::-1])) for sg in segments]
+    others = segments[crank_line] if len(segments) else segments
     inside = [r for r in r_phi + 4.0 + 1.5 * np.arange(12) if r <= length - PIN_CLEAR_MM + 1e-9]
     outside = [length + PIN_CLEAR_MM + 1.5 + 1.5 * k for k in range(6)]
     radii = inside + outside
@@ -357,23 +362,24 @@ def _place_arrow(c: np.ndarray, length: float, r_phi: float, crank: float, sense
     order = [(span, 0.0, r) for span in (70.0, 55.0, 40.0) for r in radii] + \
         [(span, off, r) for span in (60.0, 45.0) for off in (50.0, -50.0) for r in radii] + \
         [(span, 180.0, r) for span in (70.0, 50.0) for r in behind]
+
+    def nearest(pts: np.ndarray, to: np.ndarray) -> float:
+        return float(np.min(np.linalg.norm(pts[:, None] - to[None], axis=-1))) if len(to) else math.inf
+
     best = None
-    if True:
-        for span, off, r in order:
-            mid = crank + off
-            pts = _arc_samples(c, r, mid - span / 2, span)
-            lines = min(_clear(pts, [others] + taken), _clear(pts, arrows) + ARC_CLEAR_MM - ARROW_SEP_MM)
-            pin = float(np.min(np.linalg.norm(pts[:, None] - pins[None], axis=-1))) if len(pins) else math.inf
-            head = math.radians(mid + sense * span / 2)
-            room = c + (r + 3.0) * np.array([[math.cos(head), math.sin(head)]])
-            label = min(_clear(room, [segments] + taken + arrows),
-                        float(np.min(np.linalg.norm(room - pins, axis=-1))) if len(pins) else math.inf)
-            kept = float(np.min(np.linalg.norm(pts[:, None] - np.array(rooms)[None], axis=-1))) if rooms else math.inf
-            margin = min(lines - ARC_CLEAR_MM, pin - PIN_CLEAR_MM, kept - ROOM_CLEAR_MM, label - LABEL_CLEAR_MM)
-            if margin >= 0.0:
-                return float(r), mid, span
-            if best is None or margin > best[0] + 1e-9:
-                best = (margin, float(r), mid, span)
+    for span, off, r in order:
+        mid = crank + off
+        pts = _arc_samples(c, r, mid - span / 2, span)
+        lines = min(_clear(pts, [others] + taken), _clear(pts, arrows) + ARC_CLEAR_MM - ARROW_SEP_MM)
+        head = math.radians(mid + sense * span / 2)
+        room = c + (r + 3.0) * np.array([[math.cos(head), math.sin(head)]])
+        label = min(_clear(room, [segments] + taken + arrows), nearest(room, pins))
+        margin = min(lines - ARC_CLEAR_MM, nearest(pts, pins) - PIN_CLEAR_MM,
+                     nearest(pts, np.array(rooms).reshape(-1, 2)) - ROOM_CLEAR_MM, label - LABEL_CLEAR_MM)
+        if margin >= 0.0:
+            return float(r), mid, span
+        if best is None or margin > best[0] + 1e-9:
+            best = (margin, float(r), mid, span)
     return best[1], best[2], best[3]
 
 

@@ -1,7 +1,9 @@
 """The kinematic scheme's symbols on a sheet: guides (a slot joined to its link by a stem),
 links and plates (bars over plates), slider blocks (a block moved off a shared pin on its
-rod), frame supports, pins, coupler points as dots, the drive's angle φ1 and arc arrows ω1,
-ε1 (and the links' ω_j, ε_j when the scheme has them), and the labels of points and links."""
+rod), hydraulic cylinders (barrel, piston, rod; ``data-part`` names each), frame supports,
+pins, coupler points as dots, the drive's angle φ1 and arc arrows ω1, ε1 (and the links' ω_j,
+ε_j when the scheme has them), a linear drive's input arrows v, a, and the labels of points and
+links."""
 
 from __future__ import annotations
 
@@ -194,7 +196,8 @@ def scheme_layers(dwg, canvas: Canvas, sch: Scheme, ident: str, style: Style) ->
         if name in barrels:   # by the barrel
             c = barrels[name]
             prefer = np.array([-c.axis[1], c.axis[0]])
-            if any(float(np.dot(np.subtract(a.start, c.rod[0]), prefer)) < 0 for a in sch.inputs if a.link == c.rod_link):
+            arrows = [a for a in sch.inputs if a.link == c.rod_link]
+            if any(float(np.dot(np.subtract(a.start, c.rod[0]), prefer)) < 0 for a in arrows):
                 prefer = -prefer   # the drive's arrows' side (they stand by the mouth), clear of the piston's name
             bottom = 0.5 * np.add(c.barrel[0], c.barrel[3])
             top = 0.5 * np.add(c.barrel[1], c.barrel[2])
