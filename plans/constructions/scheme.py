@@ -3,11 +3,13 @@ coordinates divided by μl. Symbols (joints, blocks, supports, arc arrows) keep 
 
 Besides the links, pairs and guides, the scheme holds what a textbook scheme marks: the
 driving crank's angle φ1 (an arc from the reference direction through the pivot to the
-crank), the arc arrows ω1 and, when it is not zero, ε1 (their senses from their signs), and
+crank), the arc arrows ω1 and, when it is not zero, ε1 (their senses from their signs; each
+placed where it keeps clear of φ1, the pins, the other links and the other arrow), and
 on request (``senses=True``) the arc arrows ω_j, ε_j of every other moving link. A slotted
 link's slot is joined to the rest of its link (a stem, as the yoke of a Scotch yoke), and two
 blocks on one pin are drawn apart: the one on the frame guide is moved along its guide and
-carried from the pin by a short rod, as textbooks draw a block on a rod.
+carried from the pin by a short rod, as textbooks draw a block on a rod. Hydraulic cylinders
+(barrel, piston, rod) and a linear drive's input arrows v, a come from :mod:`.scheme_drive`.
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ import numpy as np
 
 from ..kinematics import Motion
 from ..scene import FRAME, DriveKind
+from .scheme_drive import Cylinder, DriveArrow, clearance, cylinders, drive_arrows
 
 __all__ = ["Scheme", "Block", "Guide", "Arc", "scheme", "BLOCK_MM", "HEAD_MM", "SENSE_HEAD_MM"]
 
@@ -108,6 +111,8 @@ class Scheme:
     reference: float = 0.0                           # direction φ1 is measured from, deg
     dots: tuple[str, ...] = ()                       # points on a link that are no pair (coupler points)
     arcs: tuple[Arc, ...] = ()                       # φ1, ω1, ε1 and, on request, ω_j, ε_j
+    cylinders: tuple[Cylinder, ...] = ()             # hydraulic cylinders: barrel, piston, rod
+    inputs: tuple[DriveArrow, ...] = ()              # a linear drive's input arrows v (and a)
 
 
 def _xy(v: np.ndarray) -> tuple[float, float]:
@@ -147,16 +152,48 @@ def scheme(motion: Motion, i: int, mu_l: float, *, senses: bool = False) -> Sche
         reference = (crank - phi + 180.0) % 360.0 - 180.0
         if abs(reference) < 1e-9:
             reference = 0.0
-        arcs = _drive_arcs(d, motion.drive_rates(i), c, float(np.linalg.norm(tip - c)), crank, phi, reference)
+        crank_segments = _segments(points, links, blocks, guides)
+        pins = np.array([points[p] for p in joints if p != d.pivot], dtype=float).reshape(-1, 2)
+        arcs = _drive_arcs(d, motion.drive_rates(i), c, float(np.linalg.norm(tip - c)), crank, phi, reference,
+                           crank_segments, pins)
     if d.kind == DriveKind.COUPLER:    # the given ω, ε of the driving coupler, on it
         arcs += _sense_arcs(motion, i, points, blocks, (d.link,))
     if senses:
         arcs += _sense_arcs(motion, i, points, blocks, tuple(n for n in mech.moving if n != d.link))
+    cyls = cylinders(motion, i, mu_l)
+    block = next(((b.center, BLOCK_MM[1] / 2) for b in blocks if b.link == d.link), None)
+    in_cyl = {c.barrel_link for c in cyls} | {c.rod_link for c in cyls}
+    segments = _segments(points, [(n, p) for n, p in links if n not in in_cyl], blocks, guides)
     return Scheme(mu_l=mu_l, points=points, links=links, joints=joints, supports=supports,
-                  blocks=tuple(blocks), guides=tuple(guides),
+                  blocks=tuple(blocks), guides=tuple(guides), cylinders=cyls,
+                  inputs=drive_arrows(motion, i, mu_l, block, cyls, segments),
                   drive_pivot=d.pivot if d.kind == DriveKind.ROTARY else None, omega=motion.drive_rates(i)[0],
                   epsilon=motion.drive_rates(i)[1],
                   phi=phi, reference=reference if reference is not None else 0.0, dots=dots, arcs=tuple(arcs))
+
+
+def _segments(points, links, blocks, guides) -> np.ndarray:
+    """The scheme's lines as segments (m, 2, 2), mm: bars, plates' edges, blocks' sides, guides."""
+    segs = []
+    for _, pts in links:
+        xy = [points[p] for p in pts]
+        if len(xy) == 2:
+            segs.append((xy[0], xy[1]))
+        elif len(xy) > 2:
+            segs += [(xy[k], xy[(k + 1) % len(xy)]) for k in range(len(xy))]
+    for b in blocks:
+        u = np.array([math.cos(math.radians(b.angle)), math.sin(math.radians(b.angle))])
+        n = np.array([-u[1], u[0]])
+        c = [np.add(b.center, sx * BLOCK_MM[0] / 2 * u + sy * BLOCK_MM[1] / 2 * n)
+             for sx, sy in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
+        segs += [(c[k], c[(k + 1) % 4]) for k in range(4)]
+        if b.pin is not None:
+            segs.append((b.pin, b.center))
+    for gd in guides:
+        segs.append((gd.start, gd.end))
+        if gd.stem is not None:
+            segs.append(gd.stem)
+    return np.array(segs, dtype=float).reshape(-1, 2, 2)
 
 
 def _blocks(motion: Motion, i: int, mu_l: float, points) -> tuple[list[Block], dict[int, float]]:
@@ -234,24 +271,116 @@ def _guide(motion: Motion, i: int, mu_l: float, pr, offset: float, points) -> Gu
     return Guide(pr.guide, _xy(anchor + t0 * ui), _xy(anchor + t1 * ui), fixed, stem)
 
 
+def _arc_samples(centre: np.ndarray, r: float, start: float, sweep: float, step: float = 4.0) -> np.ndarray:
+    n = max(int(math.ceil(abs(sweep) / step)), 1)
+    t = np.radians(start + sweep * np.arange(n + 1) / n)
+    return centre + r * np.column_stack([np.cos(t), np.sin(t)])
+
+
+def _polyline(pts: np.ndarray) -> np.ndarray:
+    return np.stack([pts[:-1], pts[1:]], axis=1)
+
+
 def _drive_arcs(d, rates: tuple[float, float], c: np.ndarray, length: float, crank: float, phi: float,
-                reference: float) -> list[Arc]:
-    """φ1 from the reference direction to the crank; ω1 and ε1 (``rates``, when not zero) across
-    the crank."""
+                reference: float, segments: np.ndarray, pins: np.ndarray) -> list[Arc]:
+    """φ1 from the reference direction to the crank; ω1 and ε1 (``rates``, when not zero) as arc
+    arrows about the pivot, each placed (radius, span, across the crank or beside it) where it
+    keeps clear of the scheme's lines (``segments``, mm), its pins (``pins``), the support, the
+    φ1 arc with its reference line and label, and each other (see :func:`_place_arrow`)."""
     centre = _xy(c)
-    r_phi = min(max(0.3 * length, 6.0), 14.0)
+    r_phi = min(max(0.4 * length, 5.0), 12.0)
+    if length - r_phi < PIN_ROOM_MM:                  # a very short crank: φ1 inside it still
+        r_phi = max(length - PIN_ROOM_MM, 3.5)
     arcs = []
     sweep = math.copysign(abs(phi) % 360.0, phi)
+    taken: list[np.ndarray] = [_support_segments(c)]
+    rooms: list[np.ndarray] = []                      # points kept for labels: the φ1 label's
+    arrows: list[np.ndarray] = []                     # the arc arrows placed (as segments)
     if abs(sweep) > 1e-9:
         arcs.append(Arc("phi", d.link, centre, r_phi, reference, sweep, "φ" + _sub(d.link)))
-    r = r_phi + 4.5
+        taken.append(_polyline(_arc_samples(c, r_phi, reference, sweep)))
+        ref = math.radians(reference)
+        taken.append(np.array([[c, c + (r_phi + 5.0) * np.array([math.cos(ref), math.sin(ref)])]]))
+        mid = math.radians(reference + sweep / 2)
+        rooms.append(c + (r_phi + 3.0) * np.array([math.cos(mid), math.sin(mid)]))
+    crank_seg = np.array([[c, c + length * np.array([math.cos(math.radians(crank)), math.sin(math.radians(crank))])]])
     for kind, value, sym in (("omega", rates[0], "ω"), ("epsilon", rates[1], "ε")):
-        if value != 0.0:
-            s = math.copysign(1.0, value)
-            arcs.append(Arc(kind, d.link, centre, r, crank - s * ARROW_SWEEP / 2, s * ARROW_SWEEP,
-                            sym + _sub(d.link), HEAD_MM))
-            r += 4.5
+        if value == 0.0:
+            continue
+        s = math.copysign(1.0, value)
+        r, mid, span = _place_arrow(c, length, r_phi, crank, s, segments, crank_seg, pins, taken, rooms, arrows)
+        arcs.append(Arc(kind, d.link, centre, r, mid - s * span / 2, s * span, sym + _sub(d.link), HEAD_MM))
+        arrows.append(_polyline(_arc_samples(c, r, mid - span / 2, span)))
+        end = math.radians(mid + s * span / 2)
+        rooms.append(c + (r + 3.0) * np.array([math.cos(end), math.sin(end)]))
     return arcs
+
+
+#: Clearances of a drive arc arrow, mm: from lines, from pins (centres), from a label's room.
+ARC_CLEAR_MM = 1.2
+PIN_CLEAR_MM = 2.6
+ROOM_CLEAR_MM = 2.5
+#: Room kept free beside an arc arrow's head for its label (3 mm out from the head), mm.
+LABEL_CLEAR_MM = 1.5
+#: Least distance between two arc arrows (their heads are 2 mm wide), mm.
+ARROW_SEP_MM = 3.5
+#: How far from the pivot a crank's pin keeps its arcs, mm.
+PIN_ROOM_MM = 2.5
+
+
+def _support_segments(c: np.ndarray) -> np.ndarray:
+    """The frame support's symbol under pivot ``c`` (triangle, ground line, hatching), mm: the
+    drawing's default 5 mm support and 2.2 mm hatch strokes, as segments."""
+    s, h = 5.0, 2.2
+    pts = [((0, 0), (-s / 2, -s)), ((0, 0), (s / 2, -s)), ((-s, -s), (s, -s)), ((-s - h, -s - h), (s - h, -s - h))]
+    return np.array([[c + a, c + b] for a, b in pts], dtype=float)
+
+
+def _clear(pts: np.ndarray, segments: list[np.ndarray]) -> float:
+    segs = [x for x in segments if len(x)]
+    return clearance(pts, np.concatenate(segs)) if segs else math.inf
+
+
+def _place_arrow(c: np.ndarray, length: float, r_phi: float, crank: float, sense: float, segments: np.ndarray,
+                 crank_seg: np.ndarray, pins: np.ndarray, taken: list[np.ndarray],
+                 rooms: list[np.ndarray], arrows: list[np.ndarray]) -> tuple[float, float, float]:
+    """(radius mm, middle direction deg, span deg) of a drive arc arrow about pivot ``c``.
+
+    The first candidate, in the order a textbook prefers (across the crank inside its pin, then
+    outside the pin; beside the crank; behind the pivot; wider spans first), that keeps clear:
+    ARC_CLEAR_MM of the other links' lines, the support and φ1 (``taken``), ARROW_SEP_MM of the
+    arc arrows already placed (``arrows``), PIN_CLEAR_MM of the pins, ROOM_CLEAR_MM of the
+    labels' rooms (``rooms``), and leaves LABEL_CLEAR_MM for its own label by its head
+    (``sense`` +1: the head at the counter-clockwise end). Failing all: the one that misses
+    least."""
+    crank_line = [not (np.allclose(sg, crank_seg[0]) or np.allclose(sg, crank_seg[0][::-1])) for sg in segments]
+    others = segments[crank_line] if len(segments) else segments
+    inside = [r for r in r_phi + 4.0 + 1.5 * np.arange(12) if r <= length - PIN_CLEAR_MM + 1e-9]
+    outside = [length + PIN_CLEAR_MM + 1.5 + 1.5 * k for k in range(6)]
+    radii = inside + outside
+    behind = [max(r_phi + 4.0, 8.5) + 1.5 * k for k in range(6)]
+    order = [(span, 0.0, r) for span in (70.0, 55.0, 40.0) for r in radii] + \
+        [(span, off, r) for span in (60.0, 45.0) for off in (50.0, -50.0) for r in radii] + \
+        [(span, 180.0, r) for span in (70.0, 50.0) for r in behind]
+
+    def nearest(pts: np.ndarray, to: np.ndarray) -> float:
+        return float(np.min(np.linalg.norm(pts[:, None] - to[None], axis=-1))) if len(to) else math.inf
+
+    best = None
+    for span, off, r in order:
+        mid = crank + off
+        pts = _arc_samples(c, r, mid - span / 2, span)
+        lines = min(_clear(pts, [others] + taken), _clear(pts, arrows) + ARC_CLEAR_MM - ARROW_SEP_MM)
+        head = math.radians(mid + sense * span / 2)
+        room = c + (r + 3.0) * np.array([[math.cos(head), math.sin(head)]])
+        label = min(_clear(room, [segments] + taken + arrows), nearest(room, pins))
+        margin = min(lines - ARC_CLEAR_MM, nearest(pts, pins) - PIN_CLEAR_MM,
+                     nearest(pts, np.array(rooms).reshape(-1, 2)) - ROOM_CLEAR_MM, label - LABEL_CLEAR_MM)
+        if margin >= 0.0:
+            return float(r), mid, span
+        if best is None or margin > best[0] + 1e-9:
+            best = (margin, float(r), mid, span)
+    return best[1], best[2], best[3]
 
 
 def _sense_arcs(motion: Motion, i: int, points, blocks: list[Block], links: tuple[str, ...]) -> list[Arc]:

@@ -59,7 +59,8 @@ def _fit_mu(scheme_at: Callable[[float], Scheme], slot: Box) -> float:
 
 
 def _coords(sch) -> list:
-    return list(sch.points.values()) + [g.start for g in sch.guides] + [g.end for g in sch.guides]
+    return list(sch.points.values()) + [g.start for g in sch.guides] + [g.end for g in sch.guides] + \
+        [p for c in sch.cylinders for p in c.barrel] + [p for a in sch.inputs for p in (a.start, a.end)]
 
 
 def _values(v: tuple[float, ...], unit: str) -> str:

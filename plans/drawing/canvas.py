@@ -121,6 +121,10 @@ class Canvas:
             self._ink_line(paper + paper[:1], width)
         return el
 
+    def keep_out(self, pts) -> None:
+        """Keep labels out of the inside of content polygon ``pts`` (nothing is drawn)."""
+        self.ink.append(shapely.Polygon([self._rounded(p) for p in pts]))
+
     def circle(self, parent, c, r: float, *, filled: bool = False, **attrs):
         el = self.dwg.circle(center=self.xy(c), r=fmt(r, 3), **attrs)
         parent.add(el)

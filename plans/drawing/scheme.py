@@ -1,7 +1,9 @@
 """The kinematic scheme's symbols on a sheet: guides (a slot joined to its link by a stem),
 links and plates (bars over plates), slider blocks (a block moved off a shared pin on its
-rod), frame supports, pins, coupler points as dots, the drive's angle φ1 and arc arrows ω1,
-ε1 (and the links' ω_j, ε_j when the scheme has them), and the labels of points and links."""
+rod), hydraulic cylinders (barrel, piston, rod; ``data-part`` names each), frame supports,
+pins, coupler points as dots, the drive's angle φ1 and arc arrows ω1, ε1 (and the links' ω_j,
+ε_j when the scheme has them), a linear drive's input arrows v, a, and the labels of points and
+links."""
 
 from __future__ import annotations
 
@@ -10,6 +12,7 @@ import math
 import numpy as np
 
 from ..constructions.scheme import BLOCK_MM, Arc, Scheme
+from ..constructions.scheme_drive import ARROW_HEAD_MM, BARREL_MM, Cylinder, DriveArrow
 from .canvas import Canvas, fmt
 from .marks import markup as _markup
 from .style import Style
@@ -65,6 +68,44 @@ def _draw_arc(canvas: Canvas, g, labels, arc: Arc, ident: str, style: Style) -> 
                  ident=f"{key}{arc.link}l", digits=False, near=0.5)
 
 
+def _cylinder(canvas: Canvas, g, cyl: Cylinder, ident: str, style: Style) -> None:
+    """A hydraulic cylinder: the eye from its pivot, the barrel (an outline), the piston across
+    it and the piston rod on to its pin."""
+    w = fmt(style.link, 3)
+    key = f"{ident}-cyl{cyl.barrel_link}{cyl.rod_link}"
+    if cyl.eye is not None:
+        el = canvas.line(g, cyl.eye[0], cyl.eye[1], width=style.link, stroke_width=w, id=f"{key}eye")
+        el.attribs["data-part"] = "eye"
+    el = canvas.line(g, cyl.rod[0], cyl.rod[1], width=style.link, stroke_width=w, id=f"{key}rod")
+    el.attribs["data-part"] = "rod"
+    el.attribs["data-link"] = cyl.rod_link
+    # an outline (the rod shows inside it) that labels keep out of, as of a filled shape
+    el = canvas.polygon(g, cyl.barrel, width=style.link, stroke_width=w, stroke_linejoin="round", id=f"{key}barrel")
+    canvas.keep_out(cyl.barrel)
+    el.attribs["data-part"] = "barrel"
+    el.attribs["data-link"] = cyl.barrel_link
+    el = canvas.line(g, cyl.piston[0], cyl.piston[1], width=1.5 * style.link, stroke_width=fmt(1.5 * style.link, 3),
+                     stroke_linecap="butt", id=f"{key}piston")
+    el.attribs["data-part"] = "piston"
+
+
+def _input_arrow(canvas: Canvas, g, labels, arrow: DriveArrow, ident: str, style: Style) -> None:
+    """A linear drive's input arrow (v or a) along its guide, labelled."""
+    key = f"{ident}-input{arrow.kind}{arrow.link}"
+    u = np.subtract(arrow.end, arrow.start)
+    u = u / np.linalg.norm(u)
+    stop = np.subtract(arrow.end, 0.8 * ARROW_HEAD_MM * u)
+    el = canvas.line(g, arrow.start, stop, width=style.vector, stroke_width=fmt(style.vector, 3), id=key)
+    el.attribs["data-kind"] = f"input-{arrow.kind}"
+    el.attribs["data-link"] = arrow.link
+    h = canvas.head(g, arrow.start, arrow.end, ARROW_HEAD_MM, fill=style.colour, stroke="none", id=f"{key}h")
+    h.attribs["class"] = "head"
+    h.attribs["data-for"] = key
+    mid = np.add(arrow.start, 0.5 * np.subtract(arrow.end, arrow.start))
+    canvas.label(labels, tuple(mid), arrow.label, size=style.text, prefer=(-u[1], u[0]), ident=f"{key}l",
+                 digits=False, near=0.5)
+
+
 def frame_guide(canvas: Canvas, g, gd, k: int, ident: str, style: Style) -> None:
     """The hatched ground line of frame guide ``gd`` (its ``k``-th), half a block below it."""
     off = BLOCK_MM[1] / 2
@@ -99,7 +140,10 @@ def scheme_layers(dwg, canvas: Canvas, sch: Scheme, ident: str, style: Style) ->
     g.attribs["data-mu"] = repr(sch.mu_l)
     g.attribs["data-plan"] = "scheme"
     link_w = fmt(style.link, 3)
+    in_cylinder = {c.barrel_link for c in sch.cylinders} | {c.rod_link for c in sch.cylinders}
     for k, gd in enumerate(sch.guides):
+        if not gd.fixed and gd.link in {c.barrel_link for c in sch.cylinders}:
+            continue   # the barrel is the rod's guide
         w = style.link if not gd.fixed else style.vector
         canvas.line(g, gd.start, gd.end, width=w, stroke_width=fmt(w, 3), id=f"{ident}-guide{k}")
         if gd.stem is not None:   # the slot is rigid with its link: one piece, as a yoke
@@ -112,6 +156,8 @@ def scheme_layers(dwg, canvas: Canvas, sch: Scheme, ident: str, style: Style) ->
         canvas.polygon(g, [sch.points[p] for p in pts], width=style.link, stroke_width=link_w,
                        fill="#eef2fb", stroke_linejoin="round", id=f"{ident}-link{name}")
     for name, pts in bars:
+        if name in in_cylinder:
+            continue
         canvas.line(g, sch.points[pts[0]], sch.points[pts[1]], width=style.link, stroke_width=link_w,
                     id=f"{ident}-link{name}")
     for b in sch.blocks:
@@ -120,7 +166,11 @@ def scheme_layers(dwg, canvas: Canvas, sch: Scheme, ident: str, style: Style) ->
     for b in sch.blocks:
         canvas.polygon(g, block_corners(b), width=style.link, fill="#fff", stroke_width=link_w,
                        id=f"{ident}-block{b.link}")
+    for cyl in sch.cylinders:
+        _cylinder(canvas, g, cyl, ident, style)
     labels = dwg.g(id=f"{ident}-labels", fill=style.colour)
+    for arrow in sch.inputs:
+        _input_arrow(canvas, g, labels, arrow, ident, style)
     for arc in sch.arcs:   # under the supports and pins: a pin's circle covers the lines' ends
         _draw_arc(canvas, g, labels, arc, ident, style)
     for k, p in enumerate(sch.supports):
@@ -138,10 +188,25 @@ def scheme_layers(dwg, canvas: Canvas, sch: Scheme, ident: str, style: Style) ->
         canvas.label(labels, xy, _markup(name), size=style.text, prefer=np.subtract(xy, centre), ident=f"{ident}-p{k}",
                      digits=False, near=near)
     blocks = {b.link: b for b in sch.blocks}
+    barrels = {c.barrel_link: c for c in sch.cylinders}
+    rods = {c.rod_link: c for c in sch.cylinders}
     for name, pts in sch.links:
         xy = np.array([sch.points[p] for p in pts])
         mid = xy.mean(axis=0)
-        if len(pts) >= 2:
+        if name in barrels:   # by the barrel
+            c = barrels[name]
+            prefer = np.array([-c.axis[1], c.axis[0]])
+            arrows = [a for a in sch.inputs if a.link == c.rod_link]
+            if any(float(np.dot(np.subtract(a.start, c.rod[0]), prefer)) < 0 for a in arrows):
+                prefer = -prefer   # the drive's arrows' side (they stand by the mouth), clear of the piston's name
+            bottom = 0.5 * np.add(c.barrel[0], c.barrel[3])
+            top = 0.5 * np.add(c.barrel[1], c.barrel[2])
+            mid, near = bottom + 0.25 * (top - bottom) + 0.5 * BARREL_MM * prefer, 0.6   # by the barrel's foot
+        elif name in rods:    # by the rod where it leaves the barrel
+            c = rods[name]
+            mid = 0.5 * np.add(np.mean(c.barrel[1:3], axis=0), c.rod[1])
+            prefer, near = np.array([-c.axis[1], c.axis[0]]), 0.6
+        elif len(pts) >= 2:
             u = xy[1] - xy[0]
             u = u / (np.linalg.norm(u) or 1.0)
             prefer = np.array([-u[1], u[0]])

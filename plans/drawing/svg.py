@@ -261,7 +261,8 @@ def plan_layers(dwg, canvas: Canvas, plan: Plan, ident: str, style: Style, *,
 
 
 def _scheme_coords(sch: Scheme) -> list:
-    return list(sch.points.values()) + [g.start for g in sch.guides] + [g.end for g in sch.guides]
+    return list(sch.points.values()) + [g.start for g in sch.guides] + [g.end for g in sch.guides] + \
+        [p for c in sch.cylinders for p in c.barrel] + [p for a in sch.inputs for p in (a.start, a.end)]
 
 
 def draw_scheme(sch: Scheme, heading: Heading, *, formula: str, ident: str, style: Style = Style()) -> str:
