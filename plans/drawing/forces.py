@@ -368,26 +368,35 @@ def _force_layers(dwg, canvas: Canvas, plan: ForcePlan, ident: str, style: Style
 
     # the vertices' labels are asked for first: each must sit by its point, while a side's label
     # may go anywhere beside its side
-    for k, p in enumerate(plan.points):
-        canvas.circle(labels, p.xy, 0.45, filled=True, id=f"{ident}-d{k}")
-    for k, (xy, text) in enumerate(_vertex_labels(plan.points, hidden)):
-        away = np.subtract(xy, centre)
-        canvas.label(labels, xy, text, size=style.small_text + 0.5,
-                     prefer=away if np.linalg.norm(away) > 1e-9 else (0.6, 0.8), ident=f"{ident}-l{k}",
-                     digits=False, near=0.5)
+    _letter_vertices(canvas, labels, plan.points, hidden, centre, ident, style)
     for k, v in enumerate(plan.vectors):
         el, colour = _force_vector(canvas, g, v, f"{ident}-v{k}", f"{ident}-h{k}", style)
         _tag(el, canvas, v.quantity, v.value, v.tail, v.head, vertex(v.tail), vertex(v.head))
         el.attribs["data-role"] = v.role
         el.attribs["data-kind"] = v.kind
-        if v.role == "side" and (v.length < SHORT_SIDE_MM or v.quantity in in_detail):
-            continue            # labelled in its detail, or unreadable and negligible in the table
-        mid = tuple(np.add(v.tail, v.head) / 2)
-        canvas.label(labels, mid, symbol(v.quantity), size=style.text,
-                     prefer=_side_label_direction(v.tail, v.head, centre), ident=f"{ident}-vl{k}", digits=False,
-                     fill=colour, near=0.4)
+        if not (v.role == "side" and (v.length < SHORT_SIDE_MM or v.quantity in in_detail)):
+            # (else labelled in its detail, or unreadable and negligible in the table)
+            _label_side(canvas, labels, v, colour, centre, f"{ident}-vl{k}", style)
     g.add(labels)
     dwg.add(g)
+
+
+def _letter_vertices(canvas: Canvas, labels, points, hidden, centre, ident: str, style: Style) -> None:
+    """A dot at every vertex and a letter (one per spot, :func:`_vertex_labels`) away from ``centre``."""
+    for k, p in enumerate(points):
+        canvas.circle(labels, p.xy, 0.45, filled=True, id=f"{ident}-d{k}")
+    for k, (xy, text) in enumerate(_vertex_labels(points, hidden)):
+        away = np.subtract(xy, centre)
+        canvas.label(labels, xy, text, size=style.small_text + 0.5,
+                     prefer=away if np.linalg.norm(away) > 1e-9 else (0.6, 0.8), ident=f"{ident}-l{k}",
+                     digits=False, near=0.5)
+
+
+def _label_side(canvas: Canvas, labels, v, colour: str, centre, ident: str, style: Style) -> None:
+    """The force's symbol beside side ``v``, on the side away from ``centre``."""
+    mid = tuple(np.add(v.tail, v.head) / 2)
+    canvas.label(labels, mid, symbol(v.quantity), size=style.text, prefer=_side_label_direction(v.tail, v.head, centre),
+                 ident=ident, digits=False, fill=colour, near=0.4)
 
 
 def _force_vector(canvas: Canvas, g, v, ident: str, head_ident: str, style: Style):
@@ -409,24 +418,14 @@ def _detail_layers(dwg, canvas: Canvas, plan: ForcePlan, detail: ForceDetail, id
     g.attribs["data-detail"] = "run"
     labels = dwg.g(id=f"{ident}-labels", fill=style.colour)
     centre = np.mean([p.xy for p in detail.points], axis=0)
-    for k, p in enumerate(detail.points):
-        canvas.circle(labels, p.xy, 0.45, filled=True, id=f"{ident}-d{k}")
-    for k, (xy, text) in enumerate(_vertex_labels(detail.points)):
-        away = np.subtract(xy, centre)
-        canvas.label(labels, xy, text, size=style.small_text + 0.5,
-                     prefer=away if np.linalg.norm(away) > 1e-9 else (0.6, 0.8), ident=f"{ident}-l{k}",
-                     digits=False, near=0.5)
+    _letter_vertices(canvas, labels, detail.points, (), centre, ident, style)
     for k, v in enumerate(detail.vectors):
         el, colour = _force_vector(canvas, g, v, f"{ident}-v{k}", f"{ident}-h{k}", style)
         _tag(el, canvas, v.quantity, v.value, v.tail, v.head, detail.points[k].label, detail.points[k + 1].label)
         el.attribs["data-role"] = "side"
         el.attribs["data-kind"] = v.kind
-        if v.length < SHORT_SIDE_MM:
-            continue
-        mid = tuple(np.add(v.tail, v.head) / 2)
-        canvas.label(labels, mid, symbol(v.quantity), size=style.text,
-                     prefer=_side_label_direction(v.tail, v.head, centre), ident=f"{ident}-vl{k}", digits=False,
-                     fill=colour, near=0.4)
+        if v.length >= SHORT_SIDE_MM:
+            _label_side(canvas, labels, v, colour, centre, f"{ident}-vl{k}", style)
     g.add(labels)
     dwg.add(g)
 
