@@ -137,13 +137,16 @@ def pole_detail(plan: Plan, *, sizes: tuple[tuple[float, float], ...], room: flo
     return None
 
 
-def _place(plan: Plan, k: int, radius: float, *, sizes, room: float, caption) -> PlanDetail | None:
-    """The detail ×k at the best free place, or None when none fits ``sizes``."""
+def _place(plan: Plan, k: int, radius: float, *, sizes, room: float, caption,
+           reach: float = FRAME_ROOM_MM) -> PlanDetail | None:
+    """The detail ×k at the best free place, or None when none fits ``sizes``; the frame runs
+    at least ``reach`` mm beyond the farthest enlarged image (room for its letters, or for the
+    arrows a lever's detail draws there)."""
     pole = np.array(plan.point(plan.pole), dtype=float)
     inner = np.array([p.xy for p in plan.points if math.dist(p.xy, pole) <= _reach(radius)], dtype=float)
     middle = (inner.min(axis=0) + inner.max(axis=0)) / 2.0
     spread = float(np.max(np.linalg.norm(inner - middle, axis=1)))
-    frame = max((1.0 + FRAME_GROW) * k * spread, k * spread + FRAME_ROOM_MM)
+    frame = max((1.0 + FRAME_GROW) * k * spread, k * spread + reach)
     region = max(frame / k, REGION_MIN_MM)
     cw, ch = caption
     # the detail's content about its pole: the frame, the caption above it

@@ -20,13 +20,16 @@ from .plan_values import PlanPoint
 from .scales import standard_scale
 
 __all__ = ["LeverLoad", "LeverCouple", "BalanceForce", "BalanceMoment", "LeverForce", "Lever", "zhukovsky_lever",
-           "LEVER_FORCE_MM", "SENSE"]
+           "LEVER_FORCE_MM", "SENSE", "ZERO_ARM_REL"]
 
 #: Wanted drawn length of the largest force on the lever, mm (the lever itself is the velocity
 #: plan, 80–120 mm: the forces are drawn shorter so that they do not hide it).
 LEVER_FORCE_MM = (22.0, 36.0)
 #: Sense in which the velocity plan is turned to make the lever.
 SENSE = "clockwise"
+#: An arm under this fraction of the lever's extent (the images' largest distance from the pole)
+#: is a rounding of zero: the force's line passes through the pole; its arm and moment are 0.
+ZERO_ARM_REL = 1e-9
 #: Images of a couple's ends must be ⊥ the link within this fraction of their distance (ab ⊥ AB).
 PERPENDICULAR_REL = 1e-6
 
@@ -263,6 +266,7 @@ def zhukovsky_lever(plan, loads: Sequence[LeverLoad], balance: BalanceForce | Ba
     elif not (mu > 0 and math.isfinite(mu)):
         raise ConstructionError(f"lever: μF = {mu!r} is not a positive number")
     forces = []
+    extent = max([float(np.hypot(*(r - pole))) for r in turned] + [0.0])
     for r, (q, k, _, f, label, src) in zip(turned, items):
         m = _cross(r - pole, f)
         fn = float(np.hypot(*f))
@@ -272,6 +276,8 @@ def zhukovsky_lever(plan, loads: Sequence[LeverLoad], balance: BalanceForce | Ba
         else:                   # a zero load given to the lever: along x, its arm to that line
             u = np.array([1.0, 0.0])
             arm = abs(_cross(r - pole, u))
+        if arm <= ZERO_ARM_REL * extent:        # its line passes through the pole: a rounding arm is none
+            arm, m = 0.0, 0.0
         foot = r - float((r - pole) @ u) * u
         forces.append(LeverForce(q, k, label, _pt(r), _pt(f), _pt(r), _pt(r + f / mu), fn, m, arm, _pt(foot), src,
                                  _pt(u)))

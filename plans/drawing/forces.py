@@ -42,12 +42,14 @@ import numpy as np
 
 from ..errors import DrawingError
 from ..constructions.forces import SHORT_SIDE_MM, ForceDetail, ForcePlan, Lever, LeverForce, component_of, force_details
+from ..constructions.detail import NEAR_MM
+from ..constructions.lever_detail import LeverDetail, lever_detail
 from .canvas import Canvas, fmt
-from .marks import NO_HEAD_MM, arrow as _arrow, bounds, markup as _markup
+from .marks import LABEL_ROOM_MM, NO_HEAD_MM, arrow as _arrow, bounds, markup as _markup
 from .sheet import FORMATS, TitleBlock, choose_format, new_sheet
 from .style import Style
-from .svg import Heading, _tag, plan_group
-from .text import runs, width, wrap
+from .svg import Heading, _decimal, _tag, plan_group
+from .text import ASCENT, DESCENT, runs, width, wrap
 
 __all__ = ["draw_force_plans", "draw_lever", "symbol", "PANEL_GAP_MM", "TABLE_TEXT_MM", "TABLE_LEAD_MM"]
 
@@ -432,21 +434,31 @@ def _detail_layers(dwg, canvas: Canvas, plan: ForcePlan, detail: ForceDetail, id
 
 # --- the lever --------------------------------------------------------------------------------
 
-def _arm_numbers(lever: Lever) -> dict[int, int]:
-    """Index of a force on the lever → the number of its drawn arm (1, 2, … in order)."""
-    drawn = [k for k, f in enumerate(lever.forces) if f.arm >= MIN_ARM_MM]
+def _arm_numbers(lever: Lever, detail: LeverDetail | None = None) -> dict[int, int]:
+    """Index of a force on the lever → the number of its drawn arm (1, 2, … in order): drawn
+    on the lever, or in its pole detail."""
+    again = {f.quantity: f for f in detail.lever.forces} if detail is not None else {}
+    drawn = [k for k, f in enumerate(lever.forces)
+             if f.arm >= MIN_ARM_MM or (f.quantity in again and again[f.quantity].arm >= MIN_ARM_MM)]
     return {k: n + 1 for n, k in enumerate(drawn)}
 
 
-def _lever_text(lever: Lever, note: str = "") -> list[str]:
+def _arm_text(f: LeverForce, h: str) -> str:
+    """A load's row: its value, arm and moment about p; an arm of 0 (its line through p) as such."""
+    if f.arm == 0.0:
+        return f"  {symbol(f.quantity)} = {_number(f.value)} N, {h} = 0 (its line passes through p):  0"
+    return f"  {symbol(f.quantity)} = {_number(f.value)} N, {h} = {_number(f.arm)} mm:  {_signed(f.moment, 5)}"
+
+
+def _lever_text(lever: Lever, note: str = "", detail: LeverDetail | None = None) -> list[str]:
     """The written computation of the lever (rows of label markup); ``note``: why no load is
-    on it (the first row after the plan's, when there is none)."""
+    on it (the first row after the plan's, when there is none); ``detail``: its pole detail."""
     rows = [f"Velocity plan turned 90° {lever.sense} about the pole {lever.pole} (μ_V = {lever.mu_v:g} (m/s)/mm);"]
     if lever.forces:
         rows += [f"forces applied at the images of their points, μ_F = {lever.mu:g} N/mm; arms h in mm;",
                  "moments about p, counter-clockwise positive (N·mm):"]
     loads = [f for f in lever.forces if f.kind != "balance"]
-    numbers = _arm_numbers(lever)
+    numbers = _arm_numbers(lever, detail)
     couples: dict[str, LeverForce] = {}
     for f in lever.forces:
         if f.kind == "couple":
@@ -456,9 +468,7 @@ def _lever_text(lever: Lever, note: str = "") -> list[str]:
                     "⊥ the link at the images of its two points (dashed)")
     for f in loads:
         k = lever.forces.index(f)
-        h = f"h_{_sub(str(numbers[k]))}" if k in numbers else "h"
-        rows.append(f"  {symbol(f.quantity)} = {_number(f.value)} N, {h} = {_number(f.arm)} mm:  "
-                    f"{_signed(f.moment, 5)}")
+        rows.append(_arm_text(f, f"h_{_sub(str(numbers[k]))}" if k in numbers else "h"))
     if not loads:
         rows.append((note or "no load acts at this position") + ";")
     if not any(f.kind == "balance" for f in lever.forces):      # exactly 0: no force, nothing drawn
@@ -492,14 +502,45 @@ def _lever_text(lever: Lever, note: str = "") -> list[str]:
 SHORT_MM = 1e-6
 
 
+def lever_caption(lever: Lever, k: int, mu: float) -> str:
+    """The statement of the lever's pole detail ×k: its factor and its two scales."""
+    return f"detail ×{k}, μ_V = {_decimal(lever.mu_v / k)} (m/s)/mm, μ_F = {mu:g} N/mm"
+
+
+def _lever_detail(lever: Lever, text_w: float, text_h: float, style: Style) -> LeverDetail | None:
+    """The pole detail of ``lever`` placed so that the lever, it and the written computation
+    (``text_w`` × ``text_h`` mm, beside or below) fit one sheet's drawing area."""
+    sizes = []
+    for f in FORMATS:
+        aw, ah = f.area.x1 - f.area.x0, f.area.y1 - f.area.y0
+        sizes += [(aw - PANEL_GAP_MM - text_w, ah), (aw, ah - PANEL_GAP_MM - text_h)]
+
+    def caption(k: int, mu: float) -> tuple[float, float]:
+        return width(runs(lever_caption(lever, k, mu)), style.small_text, False), \
+            (ASCENT + DESCENT) * style.small_text + 0.5
+
+    return lever_detail(lever, sizes=tuple((w, h) for w, h in sizes if w > 0 and h > 0), room=LABEL_ROOM_MM,
+                        caption=caption)
+
+
+def _rows(lever: Lever, note: str, detail: LeverDetail | None) -> tuple[list[str], float, float]:
+    rows = [r for row in _lever_text(lever, note, detail) for r in wrap(row, LEVER_TEXT_MM, TABLE_TEXT_MM,
+                                                                        indent="      ")]
+    return rows, max(width(runs(r), TABLE_TEXT_MM, False) for r in rows) + 2.0, TABLE_LEAD_MM * (len(rows) + 1)
+
+
 def draw_lever(lever: Lever, heading: Heading, *, ident: str, style: Style = Style(), note: str = "") -> str:
     """SVG text of Zhukovsky's lever at one position (see the module docstring); ``note``: why
-    no load is on it, written in its computation when none is."""
+    no load is on it, written in its computation when none is. Loaded images crowding the pole
+    get an enlarged detail beside the lever (:func:`~plans.constructions.lever_detail.lever_detail`)."""
     coords = [p.xy for p in lever.points] + [f.head for f in lever.forces] + [f.foot for f in lever.forces]
     content = bounds(coords)
-    rows = [r for row in _lever_text(lever, note) for r in wrap(row, LEVER_TEXT_MM, TABLE_TEXT_MM, indent="      ")]
-    text_w = max(width(runs(r), TABLE_TEXT_MM, False) for r in rows) + 2.0
-    text_h = TABLE_LEAD_MM * (len(rows) + 1)
+    rows, text_w, text_h = _rows(lever, note, None)
+    detail = _lever_detail(lever, text_w, text_h, style) if lever.forces else None
+    if detail is not None:
+        rows, text_w, text_h = _rows(lever, note, detail)
+        content = (min(content[0], detail.box[0]), min(content[1], detail.box[1]), max(content[2], detail.box[2]),
+                   max(content[3], detail.box[3]))
     cw, ch = content[2] - content[0], content[3] - content[1]
     beside = (cw + PANEL_GAP_MM + text_w, max(ch, text_h))
     below = (max(cw, text_w), ch + PANEL_GAP_MM + text_h)
@@ -523,7 +564,10 @@ def draw_lever(lever: Lever, heading: Heading, *, ident: str, style: Style = Sty
         lever_box = (ox, oy, ox + W, oy + ch)
         tx, ty = ox, oy + ch + PANEL_GAP_MM
     _place(canvas, content, lever_box)
-    _lever_layers(dwg, canvas, lever, ident, style)
+    numbers = _arm_numbers(lever, detail)
+    _lever_layers(dwg, canvas, lever, ident, style, numbers=numbers, detail=detail)
+    if detail is not None:
+        _lever_detail_layers(dwg, canvas, lever, detail, ident, style, numbers)
     texts = dwg.g(id=f"{ident}-texts")
     for r, row in enumerate(rows):
         canvas.text(texts, (tx, ty + TABLE_LEAD_MM * (r + 0.8)), row, size=TABLE_TEXT_MM, ident=f"{ident}-w{r}")
@@ -532,7 +576,35 @@ def draw_lever(lever: Lever, heading: Heading, *, ident: str, style: Style = Sty
     return dwg.tostring()
 
 
-def _lever_layers(dwg, canvas: Canvas, lever: Lever, ident: str, style: Style) -> None:
+def _lever_detail_layers(dwg, canvas: Canvas, lever: Lever, detail: LeverDetail, ident: str, style: Style,
+                         numbers: dict[int, int]) -> None:
+    """The pole detail: a thin circle round the region on the lever, the detail's own circle,
+    its caption and the enlarged lever, a lever group of its own (``data-detail="pole"``)."""
+    marks = dwg.g(id=f"{ident}-detail-marks", stroke=style.construction_colour, stroke_width=fmt(style.thin, 3),
+                  fill="none")
+    canvas.circle(marks, detail.middle, detail.region, id=f"{ident}-detail-region")
+    canvas.circle(marks, detail.centre, detail.frame, id=f"{ident}-detail-frame")
+    dwg.add(marks)
+    text = dwg.g(id=f"{ident}-detail-caption")
+    x, y = canvas.paper(detail.caption)
+    canvas.text(text, (x, y - DESCENT * style.small_text - 0.25), lever_caption(lever, detail.k, detail.lever.mu),
+                size=style.small_text, ident=f"{ident}-detail-statement")
+    dwg.add(text)
+    index = {f.quantity: k for k, f in enumerate(lever.forces)}
+    mine = {k: numbers[index[f.quantity]] for k, f in enumerate(detail.lever.forces) if index[f.quantity] in numbers}
+    _lever_layers(dwg, canvas, detail.lever, f"{ident}-detail", style, numbers=mine, tag_detail=True)
+
+
+def _lever_layers(dwg, canvas: Canvas, lever: Lever, ident: str, style: Style, *, numbers: dict[int, int],
+                  detail: LeverDetail | None = None, tag_detail: bool = False) -> None:
+    """The turned plan, the tagged forces, their arms and the images' letters of ``lever``;
+    ``numbers``: force index → its arm's number; ``detail``: the pole detail, whose images,
+    arms and short forces are lettered there, not here; ``tag_detail``: this is that detail."""
+    hidden: set[str] = set()
+    inside: set[str] = set()
+    if detail is not None:
+        hidden = {p.label for p in detail.lever.points if p.label != lever.pole}
+        inside = detail.quantities
     turned = dwg.g(id=f"{ident}-turned", stroke=style.colour, stroke_width=fmt(style.vector, 3), fill="none")
     turned.attribs["data-role"] = "turned velocity plan"
     for k, (a, b) in enumerate(lever.segments):
@@ -545,10 +617,12 @@ def _lever_layers(dwg, canvas: Canvas, lever: Lever, ident: str, style: Style) -
     g.attribs["data-sense"] = lever.sense
     g.attribs["data-vectors"] = str(len(lever.forces))
     g.attribs["data-pole"] = ",".join(canvas.xy(lever.pole_xy))
+    if tag_detail:
+        g.attribs["data-detail"] = "pole"
     cons = dwg.g(id=f"{ident}-arms", stroke=style.construction_colour, stroke_width=fmt(style.thin, 3), fill="none")
     labels = dwg.g(id=f"{ident}-labels", fill=style.colour)
     pole = np.asarray(lever.pole_xy)
-    numbers = _arm_numbers(lever)
+    crowd = (np.asarray(detail.middle), detail.region + NEAR_MM) if detail is not None else None
     for k, f in enumerate(lever.forces):
         colour = style.component_colour if f.kind == "balance" else style.vector_colour
         draw = _dashed_vector if f.quantity.startswith("F:M:") else _solid_vector
@@ -561,8 +635,11 @@ def _lever_layers(dwg, canvas: Canvas, lever: Lever, ident: str, style: Style) -
         el.attribs["data-h"] = repr(f.arm)
         el.attribs["data-moment"] = repr(f.moment)
         el.attribs["data-kind"] = f.kind
-        canvas.label(labels, f.head, symbol(f.quantity), size=style.text, prefer=np.subtract(f.head, f.tail),
-                     ident=f"{ident}-vl{k}", digits=False, fill=colour, near=0.6)
+        in_detail = f.quantity in inside
+        if not (in_detail and crowd is not None and math.dist(f.head, crowd[0]) <= crowd[1]):
+            # (a short force at the crowd is lettered in the detail)
+            canvas.label(labels, f.head, symbol(f.quantity), size=style.text, prefer=np.subtract(f.head, f.tail),
+                         ident=f"{ident}-vl{k}", digits=False, fill=colour, near=0.6)
         if f.arm < MIN_ARM_MM:
             continue
         arm = canvas.line(cons, pole, f.foot, id=f"{ident}-a{k}")
@@ -583,6 +660,8 @@ def _lever_layers(dwg, canvas: Canvas, lever: Lever, ident: str, style: Style) -
                 e2 = -e2
             r = RIGHT_ANGLE_MM
             canvas.polyline(cons, [foot + r * e1, foot + r * (e1 + e2), foot + r * e2], id=f"{ident}-ra{k}")
+        if in_detail:
+            continue                    # its arm is labelled in the detail
         mid = (pole + foot) / 2
         n = np.array([-(foot - pole)[1], (foot - pole)[0]])
         canvas.label(labels, tuple(mid), f"h_{_sub(str(numbers[k]))}", size=style.small_text + 0.5, prefer=n,
@@ -596,6 +675,9 @@ def _lever_layers(dwg, canvas: Canvas, lever: Lever, ident: str, style: Style) -
         same = [q.label for q in lever.points if math.dist(q.xy, p.xy) < 0.3]
         seen.append(p.xy)
         canvas.circle(labels, p.xy, 0.45, filled=True, id=f"{ident}-d{k}")
+        same = [s for s in same if s not in hidden]
+        if not same:
+            continue
         away = np.subtract(p.xy, centre)
         canvas.label(labels, p.xy, " ≡ ".join(_markup(s) for s in same), size=style.text,
                      prefer=away if np.linalg.norm(away) > 1e-9 else (-0.6, -0.8), ident=f"{ident}-l{k}",
