@@ -15,7 +15,7 @@ candidate and counted in :attr:`Canvas.crowded` (the layout test requires none).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Sequence
 
 import numpy as np
@@ -55,6 +55,7 @@ class _Request:
     ident: str
     fill: str | None
     near: float                          # smallest gap, mm (clear of a symbol drawn at the anchor)
+    others: tuple[tuple[float, float], ...] = ()    # further anchors tried in turn, paper mm
 
 
 class Canvas:
@@ -180,12 +181,14 @@ class Canvas:
         return t
 
     def label(self, parent, at, label: str, *, size: float, italic: bool = True, prefer=(1.0, 1.0),
-              ident: str = "", digits: bool = True, fill: str | None = None, near: float = 0.0) -> None:
+              ident: str = "", digits: bool = True, fill: str | None = None, near: float = 0.0,
+              also: Sequence[Sequence[float]] = ()) -> None:
         """Ask for a label of content point ``at``, preferably in content direction ``prefer``;
-        it is placed by :meth:`place_labels`."""
+        it is placed by :meth:`place_labels`. ``also``: further content points it may label
+        instead (a line's label anywhere along it), each tried in turn at every stage of gaps."""
         ang = math.atan2(-float(prefer[1]), float(prefer[0])) if any(prefer) else -math.pi / 4
         self._requests.append(_Request(parent, self.paper(at), runs(label, digits=digits), size, italic, ang,
-                                       ident, fill, near))
+                                       ident, fill, near, tuple(self.paper(a) for a in also)))
 
     def place_labels(self, leader_parent) -> None:
         """Place every requested label (see the module docstring)."""
@@ -197,31 +200,37 @@ class Canvas:
             order = np.argsort(np.abs((angles - req.prefer + math.pi) % (2 * math.pi) - math.pi), kind="stable")
             dirs = angles[order]
             best = None
+            anchor, chosen = req.anchor, None
             for gaps, leader in _STAGES:
-                x0, y0, hits, free = self._candidates(req, dirs, gaps, w, h_up + h_down, tree, leader)
-                ok = np.flatnonzero(free & (hits == 0))
-                if len(ok):
-                    k = int(ok[0])
-                    chosen = (x0[k], y0[k])
+                for at in (req.anchor,) + req.others:
+                    x0, y0, hits, free = self._candidates(req, dirs, gaps, w, h_up + h_down, tree, leader, at)
+                    ok = np.flatnonzero(free & (hits == 0))
+                    if len(ok):
+                        k = int(ok[0])
+                        chosen, anchor = (x0[k], y0[k]), at
+                        break
+                    score = hits + (~free) * 1000
+                    k = int(np.argmin(score))
+                    if best is None or score[k] < best[0]:
+                        best = (score[k], (x0[k], y0[k]), leader, at)
+                if chosen is not None:
                     break
-                score = hits + (~free) * 1000
-                k = int(np.argmin(score))
-                if best is None or score[k] < best[0]:
-                    best = (score[k], (x0[k], y0[k]), leader)
             else:
                 self.crowded += 1
-                chosen, leader = best[1], best[2]
+                chosen, leader, anchor = best[1], best[2], best[3]
             bx = Box(chosen[0], chosen[1], chosen[0] + w, chosen[1] + h_up + h_down)
             self.placed.append(bx)
             req.parent.add(self._text_el(req.parts, (bx.x0, bx.y0 + h_up), req.size, req.italic, "start",
                                          req.ident or None, req.fill))
             if leader:
-                self._leader(leader_parent, req.anchor, bx)
+                self._leader(leader_parent, anchor, bx)
         self._requests.clear()
 
-    def _candidates(self, req: _Request, dirs, gaps, w: float, h: float, tree, leader: bool):
-        """Candidate boxes (left, top) at ``gaps`` × ``dirs`` around the anchor, how many
-        things each touches, and whether each lies in the drawing area."""
+    def _candidates(self, req: _Request, dirs, gaps, w: float, h: float, tree, leader: bool, anchor=None):
+        """Candidate boxes (left, top) at ``gaps`` × ``dirs`` around ``anchor`` (the request's
+        by default), how many things each touches, and whether each lies in the drawing area."""
+        if anchor is not None:
+            req = replace(req, anchor=anchor)
         g = np.array([max(gap, req.near) for gap in gaps])[:, None]
         ux, uy = np.cos(dirs)[None, :], np.sin(dirs)[None, :]
         hw, hh = w / 2, h / 2

@@ -67,6 +67,9 @@ VERTEX_SPOT_MM = 3.0
 LEVER_TEXT_MM = 118.0
 #: Arms shorter than this are not drawn (their force's line passes through the pole), mm.
 MIN_ARM_MM = 0.5
+#: Where else along its arm (a fraction from the pole) an arm's label h_i may go, tried in
+#: turn after the arm's middle.
+ARM_LABEL_AT = (0.65, 0.35, 0.8, 0.2)
 #: Side of the right-angle mark at the foot of an arm, mm.
 RIGHT_ANGLE_MM = 1.8
 _KIND_COLOUR = {"gravity": "vector", "inertia": "vector", "external": "vector", "balance": "vector",
@@ -554,6 +557,29 @@ def draw_lever(lever: Lever, heading: Heading, *, ident: str, style: Style = Sty
     fmt_ = (fmt_b if use_beside else fmt_u) or FORMATS[2]
     scales = f"μ_V = {lever.mu_v:g} (m/s)/mm (turned {lever.sense});  " + \
         (f"μ_F = {lever.mu:g} N/mm" if lever.forces else "μ_F: no force to draw")
+    numbers = _arm_numbers(lever, detail)
+    best: tuple[int, str] | None = None
+    for asked in LABEL_ORDERS:
+        crowded, svg = _lever_sheet(lever, heading, ident, style, fmt_, W, H, scales, cw, ch, use_beside, content,
+                                    rows, text_h, numbers, detail, asked)
+        if crowded == 0:
+            return svg
+        if best is None or crowded < best[0]:
+            best = (crowded, svg)
+    return best[1]
+
+
+#: The orders in which the lever's labels are tried, until one places every label clear:
+#: (images' letters first, arms' labels anywhere along their arms, the shortest arms' first).
+LABEL_ORDERS = ((False, False, False), (True, True, False), (False, True, False), (True, False, False),
+                (True, True, True), (False, True, True))
+
+
+def _lever_sheet(lever: Lever, heading: Heading, ident: str, style: Style, fmt_, W: float, H: float, scales: str,
+                 cw: float, ch: float, use_beside: bool, content, rows, text_h: float, numbers: dict[int, int],
+                 detail: LeverDetail | None, order: tuple[bool, bool, bool]) -> tuple[int, str]:
+    """The lever's sheet with its labels asked for in ``order`` (see LABEL_ORDERS): how many
+    labels found no free place, and the SVG text."""
     dwg, canvas = new_sheet(fmt_, (0.0, 0.0, W, H), ident=ident, style=style,
                             block=TitleBlock(heading.mechanism, heading.sheet, heading.position, scales))
     ox, oy = canvas.dx, canvas.dy - H
@@ -564,20 +590,19 @@ def draw_lever(lever: Lever, heading: Heading, *, ident: str, style: Style = Sty
         lever_box = (ox, oy, ox + W, oy + ch)
         tx, ty = ox, oy + ch + PANEL_GAP_MM
     _place(canvas, content, lever_box)
-    numbers = _arm_numbers(lever, detail)
-    _lever_layers(dwg, canvas, lever, ident, style, numbers=numbers, detail=detail)
+    _lever_layers(dwg, canvas, lever, ident, style, numbers=numbers, detail=detail, order=order)
     if detail is not None:
-        _lever_detail_layers(dwg, canvas, lever, detail, ident, style, numbers)
+        _lever_detail_layers(dwg, canvas, lever, detail, ident, style, numbers, order)
     texts = dwg.g(id=f"{ident}-texts")
     for r, row in enumerate(rows):
         canvas.text(texts, (tx, ty + TABLE_LEAD_MM * (r + 0.8)), row, size=TABLE_TEXT_MM, ident=f"{ident}-w{r}")
     dwg.add(texts)
     canvas.place_labels(dwg.add(dwg.g(id=f"{ident}-leaders")))
-    return dwg.tostring()
+    return canvas.crowded, dwg.tostring()
 
 
 def _lever_detail_layers(dwg, canvas: Canvas, lever: Lever, detail: LeverDetail, ident: str, style: Style,
-                         numbers: dict[int, int]) -> None:
+                         numbers: dict[int, int], order: tuple[bool, bool, bool] = (False, False, False)) -> None:
     """The pole detail: a thin circle round the region on the lever, the detail's own circle,
     its caption and the enlarged lever, a lever group of its own (``data-detail="pole"``)."""
     marks = dwg.g(id=f"{ident}-detail-marks", stroke=style.construction_colour, stroke_width=fmt(style.thin, 3),
@@ -592,14 +617,19 @@ def _lever_detail_layers(dwg, canvas: Canvas, lever: Lever, detail: LeverDetail,
     dwg.add(text)
     index = {f.quantity: k for k, f in enumerate(lever.forces)}
     mine = {k: numbers[index[f.quantity]] for k, f in enumerate(detail.lever.forces) if index[f.quantity] in numbers}
-    _lever_layers(dwg, canvas, detail.lever, f"{ident}-detail", style, numbers=mine, tag_detail=True)
+    _lever_layers(dwg, canvas, detail.lever, f"{ident}-detail", style, numbers=mine, tag_detail=True, order=order)
 
 
 def _lever_layers(dwg, canvas: Canvas, lever: Lever, ident: str, style: Style, *, numbers: dict[int, int],
-                  detail: LeverDetail | None = None, tag_detail: bool = False) -> None:
+                  detail: LeverDetail | None = None, tag_detail: bool = False,
+                  order: tuple[bool, bool, bool] = (False, False, False)) -> None:
     """The turned plan, the tagged forces, their arms and the images' letters of ``lever``;
     ``numbers``: force index → its arm's number; ``detail``: the pole detail, whose images,
-    arms and short forces are lettered there, not here; ``tag_detail``: this is that detail."""
+    arms and short forces are lettered there, not here; ``tag_detail``: this is that detail;
+    ``order``: (the images' letters asked for first, an arm's label anywhere along its arm, the
+    arms' labels after the forces' names, shortest arm first) — else each force's name and
+    its arm's label in turn, the images' letters last, an arm's label by its middle."""
+    images_first, anywhere, short_first = order
     hidden: set[str] = set()
     inside: set[str] = set()
     if detail is not None:
@@ -623,6 +653,8 @@ def _lever_layers(dwg, canvas: Canvas, lever: Lever, ident: str, style: Style, *
     labels = dwg.g(id=f"{ident}-labels", fill=style.colour)
     pole = np.asarray(lever.pole_xy)
     crowd = (np.asarray(detail.middle), detail.region + NEAR_MM) if detail is not None else None
+    force_labels: list[tuple] = []      # (a force's name, then its arm's label) in turn
+    arm_labels: list[tuple] = []
     for k, f in enumerate(lever.forces):
         colour = style.component_colour if f.kind == "balance" else style.vector_colour
         draw = _dashed_vector if f.quantity.startswith("F:M:") else _solid_vector
@@ -638,8 +670,9 @@ def _lever_layers(dwg, canvas: Canvas, lever: Lever, ident: str, style: Style, *
         in_detail = f.quantity in inside
         if not (in_detail and crowd is not None and math.dist(f.head, crowd[0]) <= crowd[1]):
             # (a short force at the crowd is lettered in the detail)
-            canvas.label(labels, f.head, symbol(f.quantity), size=style.text, prefer=np.subtract(f.head, f.tail),
-                         ident=f"{ident}-vl{k}", digits=False, fill=colour, near=0.6)
+            (force_labels if images_first or short_first else arm_labels).append(((labels, f.head, symbol(f.quantity)),
+                                 dict(size=style.text, prefer=np.subtract(f.head, f.tail), ident=f"{ident}-vl{k}",
+                                      digits=False, fill=colour, near=0.6)))
         if f.arm < MIN_ARM_MM:
             continue
         arm = canvas.line(cons, pole, f.foot, id=f"{ident}-a{k}")
@@ -664,11 +697,14 @@ def _lever_layers(dwg, canvas: Canvas, lever: Lever, ident: str, style: Style, *
             continue                    # its arm is labelled in the detail
         mid = (pole + foot) / 2
         n = np.array([-(foot - pole)[1], (foot - pole)[0]])
-        canvas.label(labels, tuple(mid), f"h_{_sub(str(numbers[k]))}", size=style.small_text + 0.5, prefer=n,
-                     ident=f"{ident}-al{k}", digits=False, fill=style.construction_colour, near=0.4)
+        along = tuple(tuple(pole + t * (foot - pole)) for t in ARM_LABEL_AT) if anywhere else ()
+        arm_labels.append(((labels, tuple(mid), f"h_{_sub(str(numbers[k]))}", f.arm),
+                           dict(size=style.small_text + 0.5, prefer=n, ident=f"{ident}-al{k}", digits=False,
+                                fill=style.construction_colour, near=0.4, also=along)))
     g.add(cons)
     centre = np.mean([p.xy for p in lever.points], axis=0)
     seen: list[tuple[float, float]] = []
+    image_labels: list[tuple] = []
     for k, p in enumerate(lever.points):
         if any(math.dist(p.xy, q) < 0.3 for q in seen):
             continue
@@ -679,9 +715,14 @@ def _lever_layers(dwg, canvas: Canvas, lever: Lever, ident: str, style: Style, *
         if not same:
             continue
         away = np.subtract(p.xy, centre)
-        canvas.label(labels, p.xy, " ≡ ".join(_markup(s) for s in same), size=style.text,
-                     prefer=away if np.linalg.norm(away) > 1e-9 else (-0.6, -0.8), ident=f"{ident}-l{k}",
-                     digits=False, near=0.5)
+        image_labels.append(((labels, p.xy, " ≡ ".join(_markup(s) for s in same)),
+                             dict(size=style.text, prefer=away if np.linalg.norm(away) > 1e-9 else (-0.6, -0.8),
+                                  ident=f"{ident}-l{k}", digits=False, near=0.5)))
+    if short_first:
+        arm_labels.sort(key=lambda ask: ask[0][3] if len(ask[0]) > 3 else -1.0)
+    asks = image_labels + force_labels + arm_labels if images_first else force_labels + arm_labels + image_labels
+    for args, kwargs in asks:
+        canvas.label(*args[:3], **kwargs)
     g.add(labels)
     dwg.add(g)
 
