@@ -8,7 +8,8 @@ puts each one, in request order, at the first free spot around its anchor: at gr
 (:data:`GAPS`, mm), in sixteen directions starting from the preferred one, a spot being free
 when the label's box, grown by :data:`CLEARANCE`, touches no inked geometry, no label placed
 before it, and stays inside the drawing area. Far spots (:data:`LEADER_GAPS`) get a thin
-leader from the anchor. A label that finds no free spot at all is put at its least crowded
+leader from the anchor. A label may name a line rather than a point (``also``: further anchors
+along it, tried in turn at each stage of gaps). A label that finds no free spot at all is put at its least crowded
 candidate and counted in :attr:`Canvas.crowded` (the layout test requires none).
 """
 

@@ -19,7 +19,13 @@ where it is drawn again or that it is negligible. Vertices nearer than
 the turned images as arrows in μF (a moment's couple dashed, the balancing element red), the
 arms h_i from the pole as thin lines to the foot of each perpendicular (the line of action
 drawn on, dashed, when the foot is off the arrow), and beside it the written equation
-Σ M_p = 0 term by term and the balancing result.
+Σ M_p = 0 term by term and the balancing result (an arm of 0 — a line through the pole —
+written as such). When loaded images crowd the pole, an enlarged detail ×k of the pole region
+(:mod:`plans.constructions.lever_detail`) is drawn beside the lever, captioned "detail ×k,
+μV = …, μF = …": a lever of its own, its images, forces at their own μF′ and arms k·h
+labelled h_i as on the lever, which leaves off its letters of those images, short forces and
+arms. The labels are asked for in the orders of :data:`LABEL_ORDERS` in turn, until one
+places them all clear.
 
 What ``plans check`` reads (besides the tags of :mod:`.svg`): a force plan's ``<g>`` has
 ``data-plan="force"``, ``data-mu`` = μF (N/mm), ``data-group``; each vector ``data-role``
@@ -29,7 +35,10 @@ lever's ``<g>`` has ``data-plan="lever"``, ``data-mu`` = μF, ``data-mu-v`` = μ
 ``data-h`` (its exact arm, mm) and ``data-moment`` (N·mm, counter-clockwise positive on the
 lever, i.e. clockwise positive in the SVG frame's y-down terms), ``data-from`` the image it
 is applied at; each arm ``<line data-construction="arm" data-arm=QUANTITY>`` runs from the
-pole to the foot.
+pole to the foot. The pole detail is a second lever ``<g>`` with ``data-detail="pole"``,
+``data-mu`` = μF′, ``data-mu-v`` = μV/k, ``data-pole`` the detail's pole, each force's
+``data-h`` its arm there (k·h, mm) and ``data-moment`` ± F·k·h; ``plans check`` measures its
+forces and arms but asks no Σ M_p = 0 of it.
 """
 
 from __future__ import annotations
