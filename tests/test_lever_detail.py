@@ -28,7 +28,7 @@ SVG = "{http://www.w3.org/2000/svg}"
 ROUND_MM = 2.0 * math.sqrt(2.0) * 0.0005
 #: The handout variants whose levers piled labels at the pole (scene, seed, variant).
 CROWDED = (("class3_forces", 11, 3), ("class3_forces", 11, 5), ("six_link_press_forces", 12, 2),
-           ("six_link_press_forces", 12, 5))
+           ("six_link_press_forces", 12, 5), ("six_link_press_forces", 7, 2))
 
 
 @pytest.fixture(scope="module")
@@ -161,3 +161,26 @@ def test_lever_crowd_needs_two_loaded_places_near_the_pole():
                           BalanceForce((80.0, 0.0), (1.0, 0.0)))
     assert lever_crowd(two) == pytest.approx(math.hypot(1.0, 2.0), rel=1e-12)
     assert lever_crowd(two) < NEAR_MM
+    # one loaded image near the pole and a force applied at the pole itself: a crowd too
+    at_pole = zhukovsky_lever(plan, [LeverLoad("G:2", (1.0, 2.0), (0.0, -10.0)),
+                                     LeverLoad("F:ext:P", (0.0, 0.0), (3.0, 0.0), label="p")],
+                              BalanceForce((80.0, 0.0), (1.0, 0.0)))
+    assert lever_crowd(at_pole) == pytest.approx(math.hypot(1.0, 2.0), rel=1e-12)
+
+
+def test_a_force_legible_on_the_lever_is_not_drawn_again(handouts):
+    # six-link press, seed 7, variant 2: e (4.9 mm from p) carries F_E = 4000 N, drawn 32 mm
+    # on the lever, and G5, F_in,5 (under 1 mm); the detail redraws these, not F_E
+    svg = _lever_svg(handouts, "six_link_press_forces", 7, 2).read_text(encoding="utf-8")
+    groups = _levers(svg)
+    mu = float(groups[""].get("data-mu"))
+    drawn = {}
+    for l in groups[""].iter(f"{SVG}line"):
+        if l.get("data-quantity"):
+            x1, y1, x2, y2 = (float(l.get(c)) for c in ("x1", "y1", "x2", "y2"))
+            drawn[l.get("data-quantity")] = (math.hypot(x2 - x1, y2 - y1), l.get("data-from"))
+    again = {l.get("data-quantity") for l in groups["pole"].iter(f"{SVG}line") if l.get("data-quantity")}
+    assert drawn["F:ext:E"][0] == pytest.approx(4000.0 / mu, abs=ROUND_MM) and drawn["F:ext:E"][1] == "e"
+    assert "F:ext:E" not in again
+    assert {"G:5", "F:in:5"} <= again
+    assert all(drawn[q][0] < 10.0 for q in again)

@@ -4,11 +4,11 @@ The lever is the velocity plan turned, scaled by its largest velocity: the image
 points (and the forces applied at them, and their arms) may gather within a few millimetres of
 the pole while one image lies far off. :func:`lever_detail` finds such a crowd (two or more
 distinct places of images carrying a force within :data:`~plans.constructions.detail.NEAR_MM`
-of the pole, not at it) and draws the region round the pole × k beside the lever, as the
+of the pole, the pole itself one of them when a force is applied there) and draws the region round the pole × k beside the lever, as the
 plans' pole detail does (:mod:`plans.constructions.detail`: same k, same free place): the
 turned images there at k × their distances from the pole (μV/k), the forces applied at them
-at a force scale μF′ of their own (the largest :data:`DETAIL_FORCE_MM` long) and their arms
-k·h from the detail's pole. The detail is a :class:`~plans.constructions.zhukovsky.Lever` of
+that are short on the lever (under :data:`LEGIBLE_MM`) at a force scale μF′ of their own
+(the largest :data:`DETAIL_FORCE_MM` long) and their arms k·h from the detail's pole. The detail is a :class:`~plans.constructions.zhukovsky.Lever` of
 its own (its ``mu_v`` = μV/k, ``mu`` = μF′, its pole the detail's pole; each force's
 ``moment`` = ± F·k·h, about that pole); it holds only some of the lever's forces, so its
 moments need not sum to zero. Geometry in plan millimetres; it draws nothing.
@@ -31,6 +31,9 @@ __all__ = ["LeverDetail", "lever_crowd", "lever_detail", "DETAIL_FORCE_MM"]
 
 #: Wanted drawn length of the largest force in the detail, mm.
 DETAIL_FORCE_MM = (10.0, 16.0)
+#: A force drawn on the lever at least this long is legible there: it is not drawn again in the
+#: detail (its name, arm and the arm's label stay on the lever), mm.
+LEGIBLE_MM = 10.0
 #: The detail's frame runs this far beyond its farthest image: the longest arrow and its letter, mm.
 ARROW_ROOM_MM = DETAIL_FORCE_MM[1] + 4.0
 
@@ -62,16 +65,19 @@ class LeverDetail:
 
 def lever_crowd(lever: Lever, near: float = NEAR_MM) -> float | None:
     """The largest distance from the pole (mm) of the loaded images crowding it (within
-    ``near`` mm, not at it; two or more distinct places), or None when there is no crowd or
-    the lever as a whole is no larger than four times ``near``."""
+    ``near`` mm, not at it), or None when there is no crowd or the lever as a whole is no
+    larger than four times ``near``. A crowd is two or more distinct places, the pole counting
+    as one when a force is applied there (its forces' names and arms gather there too)."""
     pole = lever.pole_xy
     places: list[tuple[float, float]] = []
+    at_pole = False
     for f in lever.forces:
         d = math.dist(f.point, pole)
+        at_pole = at_pole or d <= AT_POLE_MM
         if AT_POLE_MM < d < near and not any(math.dist(f.point, q) < AT_POLE_MM for q in places):
             places.append(f.point)
     extent = max([math.dist(p.xy, pole) for p in lever.points] + [math.dist(f.head, pole) for f in lever.forces])
-    if len(places) < 2 or extent < 4.0 * near:
+    if not places or len(places) + at_pole < 2 or extent < 4.0 * near:
         return None
     return max(math.dist(q, pole) for q in places)
 
@@ -96,7 +102,9 @@ def lever_detail(lever: Lever, *, sizes: tuple[tuple[float, float], ...], room: 
     radius = lever_crowd(lever, near)
     if radius is None:
         return None
-    inside = [f for f in lever.forces if math.dist(f.point, lever.pole_xy) <= _reach(radius)]
+    inside = [f for f in lever.forces if _redrawn(f, lever, radius)]
+    if not inside:
+        return None
     fmax = max(f.value for f in inside)
     mu = standard_scale(fmax, window=DETAIL_FORCE_MM) if fmax > 0 else lever.mu
     plan = _as_plan(lever)
@@ -108,6 +116,12 @@ def lever_detail(lever: Lever, *, sizes: tuple[tuple[float, float], ...], room: 
                                found.region, found.centre, found.frame, found.caption, found.box)
         k = next((f for f in FACTORS if f < k), None)
     return None
+
+
+def _redrawn(f, lever: Lever, radius: float) -> bool:
+    """Whether force ``f`` is drawn again in the detail: applied inside the region, and short
+    on the lever."""
+    return math.dist(f.point, lever.pole_xy) <= _reach(radius) and f.length < LEGIBLE_MM
 
 
 def _enlarged(lever: Lever, k: int, radius: float, middle, centre, mu: float) -> Lever:
@@ -124,7 +138,7 @@ def _enlarged(lever: Lever, k: int, radius: float, middle, centre, mu: float) ->
     new_pole = s(pole)
     forces = []
     for f in lever.forces:
-        if not inside(f.point):
+        if not _redrawn(f, lever, radius):
             continue
         p = s(f.point)
         u = np.asarray(f.direction, dtype=float)
