@@ -228,3 +228,26 @@ def test_angles_that_print_alike_get_their_own_sheets(tmp_path):
     names = sorted(p.name for p in (tmp_path / "alike-out").glob("*.svg"))
     assert names == ["alike-velocity-10.0000001.svg", "alike-velocity-10.0000002.svg", "alike-velocity-30.svg"]
     assert len(report["positions"]) == 3
+
+
+def test_guides_parallel_to_a_subnormal_angle_are_parallel_not_an_overflow():
+    """Found by hypothesis (test_prp_at_parallel): a guide at 2.2e-309 rad to another gives a
+    subnormal cross product; dividing by it overflowed (an error under -W error). The lines are
+    parallel (|u1 × u2| ≤ PARALLEL_DET): a finite placeholder, the cross product returned as is."""
+    import warnings
+
+    from plans.kinematics.groups import _intersect
+    from plans.kinematics.tolerances import PARALLEL_DET
+
+    p1 = np.array([[-28.64934425, 0.0], [-28.64498082, 0.5]])
+    u1 = np.array([[0.9998477, 0.01745241], [1.0, 0.0]])
+    p2 = np.array([[-28.64934425, 0.0], [-28.64934425, 0.0]])
+    u2 = np.array([[1.0, 2.22507386e-309], [1.0, 2.22507386e-309]])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        point, det = _intersect(p1, u1, p2, u2)
+    assert np.all(np.isfinite(point))
+    assert abs(det[1]) <= PARALLEL_DET and det[1] != 0.0
+    # the first row meets at 1° and is solved exactly: the point lies on both lines
+    assert abs(det[0]) > PARALLEL_DET
+    np.testing.assert_allclose(point[0], p2[0], atol=1e-12)

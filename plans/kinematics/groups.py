@@ -106,9 +106,11 @@ def _line(mech_state: LinkState, anchor: np.ndarray, direction: np.ndarray) -> t
 
 
 def _intersect(p1: np.ndarray, u1: np.ndarray, p2: np.ndarray, u2: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Intersection of lines p1 + t·u1 and p2 + s·u2; second value: u1 × u2 (0 = parallel)."""
+    """Intersection of lines p1 + t·u1 and p2 + s·u2; second value: u1 × u2. Where
+    |u1 × u2| ≤ PARALLEL_DET the lines are parallel: the point there is a finite placeholder
+    (the caller marks it invalid), never the overflow of dividing by a subnormal cross product."""
     det = cross(u1, u2)
-    safe = np.where(det == 0.0, 1.0, det)
+    safe = np.where(np.abs(det) > PARALLEL_DET, det, 1.0)
     t = cross(p2 - p1, u2) / safe
     return p1 + t[..., None] * u1, det
 
