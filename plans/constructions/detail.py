@@ -17,6 +17,7 @@ geometry in plan millimetres (y up, the main plan's pole at the origin); it draw
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, replace
 from typing import Callable
@@ -26,7 +27,7 @@ import shapely
 
 from .plan_values import ConstructionLine, Plan, PlanPoint
 
-__all__ = ["PlanDetail", "pole_crowd", "enlargeable", "pole_detail", "NEAR_MM", "DETAIL_MM", "DETAIL_MIN_MM", "FACTORS", "CLEAR_MM"]
+__all__ = ["PoleRegion", "PlanDetail", "pole_crowd", "enlargeable", "pole_detail", "NEAR_MM", "DETAIL_MM", "DETAIL_MIN_MM", "FACTORS", "CLEAR_MM"]
 
 #: Images closer to the pole than this crowd it, mm.
 NEAR_MM = 5.0
@@ -54,19 +55,15 @@ STEP_MM = 2.5
 
 
 @dataclass(frozen=True)
-class PlanDetail:
-    """The detail ×``k`` of a plan's pole region.
-
-    ``plan``: the images within ``radius`` mm of the pole and the vectors between them, at
-    μ/k; the region round the pole is the circle ``region`` (radius, mm) round ``middle``
-    (the middle of the pole and the crowding images, plan mm), drawn × k as the detail's
-    frame, the circle ``frame`` round ``centre`` (mm, in the main plan's frame; ``middle``
-    enlarged goes there); ``caption``: the lower left corner of the caption's box (plan mm)
-    and ``box`` (x0, y0, x1, y1) all the detail takes on the sheet, caption and the letters'
-    room included."""
+class PoleRegion:
+    """Where a detail ×``k`` of a pole region lies: the crowd's largest distance from the
+    pole ``radius`` (mm); the region, the circle ``region`` (radius, mm) round ``middle`` (the
+    middle of the pole and the crowding images, mm), drawn × k as the detail's frame, the
+    circle ``frame`` round ``centre`` (mm, in the main drawing's frame; ``middle`` enlarged
+    goes there); ``caption``: the lower left corner of the caption's box and ``box`` (x0, y0,
+    x1, y1) all the detail takes on the sheet, caption and the letters' room included."""
 
     k: int
-    plan: Plan
     radius: float
     middle: tuple[float, float]
     region: float
@@ -74,6 +71,18 @@ class PlanDetail:
     frame: float
     caption: tuple[float, float]
     box: tuple[float, float, float, float]
+
+    def fields(self) -> dict:
+        """The region's own fields, to make a detail of it (``PlanDetail(**r.fields(), plan=…)``)."""
+        return {f.name: getattr(self, f.name) for f in dataclasses.fields(PoleRegion)}
+
+
+@dataclass(frozen=True)
+class PlanDetail(PoleRegion):
+    """The detail ×``k`` of a plan's pole region (:class:`PoleRegion`): ``plan`` holds the
+    images within ``radius`` mm of the pole and the vectors between them, at μ/k."""
+
+    plan: Plan | None = None
 
     @property
     def mu(self) -> float:
@@ -132,13 +141,13 @@ def pole_detail(plan: Plan, *, sizes: tuple[tuple[float, float], ...], room: flo
     while k is not None and k * radius >= DETAIL_MIN_MM:
         found = _place(plan, k, radius, sizes=sizes, room=room, caption=caption(k))
         if found is not None:
-            return found
+            return PlanDetail(**found.fields(), plan=_enlarged(plan, k, radius, found.middle, found.centre))
         k = next((f for f in FACTORS if f < k), None)
     return None
 
 
 def _place(plan: Plan, k: int, radius: float, *, sizes, room: float, caption,
-           reach: float = FRAME_ROOM_MM) -> PlanDetail | None:
+           reach: float = FRAME_ROOM_MM) -> PoleRegion | None:
     """The detail ×k at the best free place, or None when none fits ``sizes``; the frame runs
     at least ``reach`` mm beyond the farthest enlarged image (room for its letters, or for the
     arrows a lever's detail draws there)."""
@@ -182,10 +191,8 @@ def _place(plan: Plan, k: int, radius: float, *, sizes, room: float, caption,
     best = ok[np.lexsort((cy[ok], cx[ok], far, score))[0]]
     centre = (float(cx[best]), float(cy[best]))
     mid = (float(middle[0]), float(middle[1]))
-    return PlanDetail(k, _enlarged(plan, k, radius, mid, centre), radius, mid, region, centre, frame,
-                      (centre[0] - frame, centre[1] + frame + CAPTION_GAP_MM),
-                      (float(centre[0] + fx0), float(centre[1] + fy0), float(centre[0] + fx1),
-                       float(centre[1] + fy1)))
+    return PoleRegion(k, radius, mid, region, centre, frame, (centre[0] - frame, centre[1] + frame + CAPTION_GAP_MM),
+                      (float(centre[0] + fx0), float(centre[1] + fy0), float(centre[0] + fx1), float(centre[1] + fy1)))
 
 
 def _reach(radius: float) -> float:

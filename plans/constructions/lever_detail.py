@@ -22,7 +22,7 @@ from typing import Callable
 
 import numpy as np
 
-from .detail import AT_POLE_MM, DETAIL_MIN_MM, FACTORS, NEAR_MM, _factor, _place, _reach
+from .detail import PoleRegion, AT_POLE_MM, DETAIL_MIN_MM, FACTORS, NEAR_MM, _factor, _place, _reach
 from .plan_values import ConstructionLine, Plan, PlanPoint, PlanVector
 from .scales import standard_scale
 from .zhukovsky import Lever
@@ -39,23 +39,11 @@ ARROW_ROOM_MM = DETAIL_FORCE_MM[1] + 4.0
 
 
 @dataclass(frozen=True)
-class LeverDetail:
-    """The detail ×``k`` of a lever's pole region: ``lever`` the enlarged lever (its images,
-    segments and forces inside the region, at μV/k and μF′); ``radius`` the crowd's largest
-    distance from the pole (mm); the region is the circle ``region`` round ``middle`` on the
-    lever, drawn × k as the circle ``frame`` round ``centre`` (mm, the lever's frame);
-    ``caption`` the lower left corner of the caption, ``box`` all the detail takes (x0, y0,
-    x1, y1, mm), as :class:`~plans.constructions.detail.PlanDetail`."""
+class LeverDetail(PoleRegion):
+    """The detail ×``k`` of a lever's pole region (:class:`~.detail.PoleRegion`): ``lever``
+    the enlarged lever (its images, segments and forces inside the region, at μV/k and μF′)."""
 
-    k: int
-    lever: Lever
-    radius: float
-    middle: tuple[float, float]
-    region: float
-    centre: tuple[float, float]
-    frame: float
-    caption: tuple[float, float]
-    box: tuple[float, float, float, float]
+    lever: Lever | None = None
 
     @property
     def quantities(self) -> frozenset[str]:
@@ -112,8 +100,7 @@ def lever_detail(lever: Lever, *, sizes: tuple[tuple[float, float], ...], room: 
     while k is not None and k * radius >= DETAIL_MIN_MM:
         found = _place(plan, k, radius, sizes=sizes, room=room, caption=caption(k, mu), reach=ARROW_ROOM_MM)
         if found is not None:
-            return LeverDetail(k, _enlarged(lever, k, radius, found.middle, found.centre, mu), radius, found.middle,
-                               found.region, found.centre, found.frame, found.caption, found.box)
+            return LeverDetail(**found.fields(), lever=_enlarged(lever, k, radius, found.middle, found.centre, mu))
         k = next((f for f in FACTORS if f < k), None)
     return None
 

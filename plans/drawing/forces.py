@@ -57,7 +57,7 @@ from .canvas import Canvas, fmt
 from .marks import LABEL_ROOM_MM, NO_HEAD_MM, arrow as _arrow, bounds, markup as _markup
 from .sheet import FORMATS, TitleBlock, choose_format, new_sheet
 from .style import Style
-from .svg import Heading, _decimal, _tag, plan_group
+from .svg import Heading, _decimal, _tag, detail_frame, plan_group
 from .text import ASCENT, DESCENT, runs, width, wrap
 
 __all__ = ["draw_force_plans", "draw_lever", "symbol", "PANEL_GAP_MM", "TABLE_TEXT_MM", "TABLE_LEAD_MM"]
@@ -614,16 +614,7 @@ def _lever_detail_layers(dwg, canvas: Canvas, lever: Lever, detail: LeverDetail,
                          numbers: dict[int, int], order: tuple[bool, bool, bool] = (False, False, False)) -> None:
     """The pole detail: a thin circle round the region on the lever, the detail's own circle,
     its caption and the enlarged lever, a lever group of its own (``data-detail="pole"``)."""
-    marks = dwg.g(id=f"{ident}-detail-marks", stroke=style.construction_colour, stroke_width=fmt(style.thin, 3),
-                  fill="none")
-    canvas.circle(marks, detail.middle, detail.region, id=f"{ident}-detail-region")
-    canvas.circle(marks, detail.centre, detail.frame, id=f"{ident}-detail-frame")
-    dwg.add(marks)
-    text = dwg.g(id=f"{ident}-detail-caption")
-    x, y = canvas.paper(detail.caption)
-    canvas.text(text, (x, y - DESCENT * style.small_text - 0.25), lever_caption(lever, detail.k, detail.lever.mu),
-                size=style.small_text, ident=f"{ident}-detail-statement")
-    dwg.add(text)
+    detail_frame(dwg, canvas, detail, lever_caption(lever, detail.k, detail.lever.mu), ident, style)
     index = {f.quantity: k for k, f in enumerate(lever.forces)}
     mine = {k: numbers[index[f.quantity]] for k, f in enumerate(detail.lever.forces) if index[f.quantity] in numbers}
     _lever_layers(dwg, canvas, detail.lever, f"{ident}-detail", style, numbers=mine, tag_detail=True, order=order)

@@ -181,17 +181,23 @@ def detail_layers(dwg, canvas: Canvas, plan: Plan, detail: PlanDetail, ident: st
     """The detail ×k of ``plan``'s pole region: a thin circle round the region on the plan,
     the detail's own circle, its caption and the detail itself, a plan group of its own
     (``{ident}-detail-plan``, μ/k) measured by ``plans check`` like the plan."""
+    detail_frame(dwg, canvas, detail, detail_caption(plan, detail.k, symbol), ident, style)
+    plan_layers(dwg, canvas, detail.plan, f"{ident}-detail", style)
+
+
+def detail_frame(dwg, canvas: Canvas, region, caption: str, ident: str, style: Style) -> None:
+    """A detail's frame (:class:`~plans.constructions.detail.PoleRegion`): a thin circle round
+    the region on the drawing, the detail's own circle and its ``caption`` above it."""
     marks = dwg.g(id=f"{ident}-detail-marks", stroke=style.construction_colour, stroke_width=fmt(style.thin, 3),
                   fill="none")
-    canvas.circle(marks, detail.middle, detail.region, id=f"{ident}-detail-region")
-    canvas.circle(marks, detail.centre, detail.frame, id=f"{ident}-detail-frame")
+    canvas.circle(marks, region.middle, region.region, id=f"{ident}-detail-region")
+    canvas.circle(marks, region.centre, region.frame, id=f"{ident}-detail-frame")
     dwg.add(marks)
     text = dwg.g(id=f"{ident}-detail-caption")
-    x, y = canvas.paper(detail.caption)
-    canvas.text(text, (x, y - DESCENT * style.small_text - 0.25), detail_caption(plan, detail.k, symbol),
-                size=style.small_text, ident=f"{ident}-detail-statement")
+    x, y = canvas.paper(region.caption)
+    canvas.text(text, (x, y - DESCENT * style.small_text - 0.25), caption, size=style.small_text,
+                ident=f"{ident}-detail-statement")
     dwg.add(text)
-    plan_layers(dwg, canvas, detail.plan, f"{ident}-detail", style)
 
 
 def draw_empty(kind: str, heading: Heading, *, ident: str, style: Style = Style(), notes: Sequence[str] = ()) -> str:
