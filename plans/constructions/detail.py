@@ -27,7 +27,8 @@ import shapely
 
 from .plan_values import ConstructionLine, Plan, PlanPoint
 
-__all__ = ["PoleRegion", "PlanDetail", "pole_crowd", "enlargeable", "pole_detail", "NEAR_MM", "DETAIL_MM", "DETAIL_MIN_MM", "FACTORS", "CLEAR_MM"]
+__all__ = ["PoleRegion", "PlanDetail", "pole_crowd", "enlargeable", "pole_detail", "NEAR_MM", "DETAIL_MM",
+           "DETAIL_MIN_MM", "FACTORS", "CLEAR_MM"]
 
 #: Images closer to the pole than this crowd it, mm.
 NEAR_MM = 5.0
@@ -138,10 +139,20 @@ def pole_detail(plan: Plan, *, sizes: tuple[tuple[float, float], ...], room: flo
     if crowd is None:
         return None
     _, radius, k = crowd
+    found = _region(plan, k, radius, sizes=sizes, room=room, caption=caption)
+    if found is None:
+        return None
+    return PlanDetail(**found.fields(), plan=_enlarged(plan, found.k, radius, found.middle, found.centre))
+
+
+def _region(plan: Plan, k: int | None, radius: float, *, sizes, room: float,
+            caption: Callable[[int], tuple[float, float]], reach: float = FRAME_ROOM_MM) -> PoleRegion | None:
+    """The region of the largest factor from ``k`` down (:data:`FACTORS`) whose detail finds a
+    free place (:func:`_place`), while the crowd × k stays at least DETAIL_MIN_MM; else None."""
     while k is not None and k * radius >= DETAIL_MIN_MM:
-        found = _place(plan, k, radius, sizes=sizes, room=room, caption=caption(k))
+        found = _place(plan, k, radius, sizes=sizes, room=room, caption=caption(k), reach=reach)
         if found is not None:
-            return PlanDetail(**found.fields(), plan=_enlarged(plan, k, radius, found.middle, found.centre))
+            return found
         k = next((f for f in FACTORS if f < k), None)
     return None
 

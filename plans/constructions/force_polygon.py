@@ -19,9 +19,9 @@ from ..errors import ConstructionError
 from .plan_values import EXTENSION_MM, ConstructionLine, PlanPoint
 from .scales import SERIES, _series_values
 
-__all__ = ["ForceTerm", "ForceVector", "ForcePlan", "force_plan", "KINDS", "CLOSURE_REL", "FORCE_REFERENCE_MM", "FORCE_SERIES",
-           "FORCE_PLAN_MAX_MM", "component_of", "force_scale", "ForceDetail", "force_details", "SHORT_SIDE_MM",
-           "RUN_SIDE_MM", "DETAIL_REFERENCE_MM", "TWO_FORCE_OFFSET_MM"]
+__all__ = ["ForceTerm", "ForceVector", "ForcePlan", "force_plan", "KINDS", "CLOSURE_REL", "FORCE_REFERENCE_MM",
+           "FORCE_SERIES", "FORCE_PLAN_MAX_MM", "component_of", "force_scale", "ForceDetail", "force_details",
+           "SHORT_SIDE_MM", "RUN_SIDE_MM", "DETAIL_REFERENCE_MM", "TWO_FORCE_OFFSET_MM"]
 
 #: The kinds of force a term may be.
 KINDS = ("gravity", "inertia", "external", "reaction", "reaction_n", "reaction_t", "balance")

@@ -4,14 +4,15 @@ The lever is the velocity plan turned, scaled by its largest velocity: the image
 points (and the forces applied at them, and their arms) may gather within a few millimetres of
 the pole while one image lies far off. :func:`lever_detail` finds such a crowd (two or more
 distinct places of images carrying a force within :data:`~plans.constructions.detail.NEAR_MM`
-of the pole, the pole itself one of them when a force is applied there) and draws the region round the pole × k beside the lever, as the
-plans' pole detail does (:mod:`plans.constructions.detail`: same k, same free place): the
-turned images there at k × their distances from the pole (μV/k), the forces applied at them
-that are short on the lever (under :data:`LEGIBLE_MM`) at a force scale μF′ of their own
-(the largest :data:`DETAIL_FORCE_MM` long) and their arms k·h from the detail's pole. The detail is a :class:`~plans.constructions.zhukovsky.Lever` of
-its own (its ``mu_v`` = μV/k, ``mu`` = μF′, its pole the detail's pole; each force's
-``moment`` = ± F·k·h, about that pole); it holds only some of the lever's forces, so its
-moments need not sum to zero. Geometry in plan millimetres; it draws nothing.
+of the pole, the pole itself one of them when a force is applied there) and draws the region
+round the pole × k beside the lever, as the plans' pole detail does
+(:mod:`plans.constructions.detail`: same k, same free place): the turned images there at k ×
+their distances from the pole (μV/k), the forces applied at them that are short on the lever
+(under :data:`LEGIBLE_MM`) at a force scale μF′ of their own (the largest
+:data:`DETAIL_FORCE_MM` long) and their arms k·h from the detail's pole. The detail is a
+:class:`~plans.constructions.zhukovsky.Lever` of its own (its ``mu_v`` = μV/k, ``mu`` = μF′,
+its pole the detail's pole; each force's ``moment`` = ± F·k·h, about that pole); it holds
+only some of the lever's forces, so its moments need not sum to zero. Geometry in plan millimetres; it draws nothing.
 """
 
 from __future__ import annotations
@@ -22,7 +23,7 @@ from typing import Callable
 
 import numpy as np
 
-from .detail import PoleRegion, AT_POLE_MM, DETAIL_MIN_MM, FACTORS, NEAR_MM, _factor, _place, _reach
+from .detail import AT_POLE_MM, NEAR_MM, PoleRegion, _factor, _reach, _region
 from .plan_values import ConstructionLine, Plan, PlanPoint, PlanVector
 from .scales import standard_scale
 from .zhukovsky import Lever
@@ -95,14 +96,11 @@ def lever_detail(lever: Lever, *, sizes: tuple[tuple[float, float], ...], room: 
         return None
     fmax = max(f.value for f in inside)
     mu = standard_scale(fmax, window=DETAIL_FORCE_MM) if fmax > 0 else lever.mu
-    plan = _as_plan(lever)
-    k = _factor(radius)
-    while k is not None and k * radius >= DETAIL_MIN_MM:
-        found = _place(plan, k, radius, sizes=sizes, room=room, caption=caption(k, mu), reach=ARROW_ROOM_MM)
-        if found is not None:
-            return LeverDetail(**found.fields(), lever=_enlarged(lever, k, radius, found.middle, found.centre, mu))
-        k = next((f for f in FACTORS if f < k), None)
-    return None
+    found = _region(_as_plan(lever), _factor(radius), radius, sizes=sizes, room=room,
+                    caption=lambda k: caption(k, mu), reach=ARROW_ROOM_MM)
+    if found is None:
+        return None
+    return LeverDetail(**found.fields(), lever=_enlarged(lever, found.k, radius, found.middle, found.centre, mu))
 
 
 def _redrawn(f, lever: Lever, radius: float) -> bool:

@@ -54,7 +54,7 @@ from ..constructions.forces import SHORT_SIDE_MM, ForceDetail, ForcePlan, Lever,
 from ..constructions.detail import NEAR_MM
 from ..constructions.lever_detail import LeverDetail, lever_detail
 from .canvas import Canvas, fmt
-from .marks import LABEL_ROOM_MM, NO_HEAD_MM, arrow as _arrow, bounds, markup as _markup
+from .marks import LABEL_ROOM_MM, NO_HEAD_MM, arrow as _arrow, bounds, markup as _markup, union
 from .sheet import FORMATS, TitleBlock, choose_format, new_sheet
 from .style import Style
 from .svg import Heading, _decimal, _tag, detail_frame, plan_group
@@ -551,8 +551,7 @@ def draw_lever(lever: Lever, heading: Heading, *, ident: str, style: Style = Sty
     detail = _lever_detail(lever, text_w, text_h, style) if lever.forces else None
     if detail is not None:
         rows, text_w, text_h = _rows(lever, note, detail)
-        content = (min(content[0], detail.box[0]), min(content[1], detail.box[1]), max(content[2], detail.box[2]),
-                   max(content[3], detail.box[3]))
+        content = union(content, detail.box)
     cw, ch = content[2] - content[0], content[3] - content[1]
     beside = (cw + PANEL_GAP_MM + text_w, max(ch, text_h))
     below = (max(cw, text_w), ch + PANEL_GAP_MM + text_h)
@@ -653,7 +652,9 @@ def _lever_layers(dwg, canvas: Canvas, lever: Lever, ident: str, style: Style, *
     labels = dwg.g(id=f"{ident}-labels", fill=style.colour)
     pole = np.asarray(lever.pole_xy)
     crowd = (np.asarray(detail.middle), detail.region + NEAR_MM) if detail is not None else None
-    force_labels: list[tuple] = []      # (a force's name, then its arm's label) in turn
+    # label requests (an arm's length to sort by, canvas.label's arguments, its keywords);
+    # else (a force's name, then its arm's label) in turn
+    force_labels: list[tuple] = []
     arm_labels: list[tuple] = []
     for k, f in enumerate(lever.forces):
         colour = style.component_colour if f.kind == "balance" else style.vector_colour
@@ -670,9 +671,10 @@ def _lever_layers(dwg, canvas: Canvas, lever: Lever, ident: str, style: Style, *
         in_detail = f.quantity in inside
         if not (in_detail and crowd is not None and math.dist(f.head, crowd[0]) <= crowd[1]):
             # (a short force at the crowd is lettered in the detail)
-            (force_labels if images_first or short_first else arm_labels).append(((labels, f.head, symbol(f.quantity)),
-                                 dict(size=style.text, prefer=np.subtract(f.head, f.tail), ident=f"{ident}-vl{k}",
-                                      digits=False, fill=colour, near=0.6)))
+            ask = (0.0, (labels, f.head, symbol(f.quantity)),
+                   dict(size=style.text, prefer=np.subtract(f.head, f.tail), ident=f"{ident}-vl{k}", digits=False,
+                        fill=colour, near=0.6))
+            (force_labels if images_first or short_first else arm_labels).append(ask)
         if f.arm < MIN_ARM_MM:
             continue
         arm = canvas.line(cons, pole, f.foot, id=f"{ident}-a{k}")
@@ -698,7 +700,7 @@ def _lever_layers(dwg, canvas: Canvas, lever: Lever, ident: str, style: Style, *
         mid = (pole + foot) / 2
         n = np.array([-(foot - pole)[1], (foot - pole)[0]])
         along = tuple(tuple(pole + t * (foot - pole)) for t in ARM_LABEL_AT) if anywhere else ()
-        arm_labels.append(((labels, tuple(mid), f"h_{_sub(str(numbers[k]))}", f.arm),
+        arm_labels.append((f.arm, (labels, tuple(mid), f"h_{_sub(str(numbers[k]))}"),
                            dict(size=style.small_text + 0.5, prefer=n, ident=f"{ident}-al{k}", digits=False,
                                 fill=style.construction_colour, near=0.4, also=along)))
     g.add(cons)
@@ -715,14 +717,14 @@ def _lever_layers(dwg, canvas: Canvas, lever: Lever, ident: str, style: Style, *
         if not same:
             continue
         away = np.subtract(p.xy, centre)
-        image_labels.append(((labels, p.xy, " ≡ ".join(_markup(s) for s in same)),
+        image_labels.append((0.0, (labels, p.xy, " ≡ ".join(_markup(s) for s in same)),
                              dict(size=style.text, prefer=away if np.linalg.norm(away) > 1e-9 else (-0.6, -0.8),
                                   ident=f"{ident}-l{k}", digits=False, near=0.5)))
     if short_first:
-        arm_labels.sort(key=lambda ask: ask[0][3] if len(ask[0]) > 3 else -1.0)
+        arm_labels.sort(key=lambda ask: ask[0])         # only arms' labels here: the shortest arm first
     asks = image_labels + force_labels + arm_labels if images_first else force_labels + arm_labels + image_labels
-    for args, kwargs in asks:
-        canvas.label(*args[:3], **kwargs)
+    for _, args, kwargs in asks:
+        canvas.label(*args, **kwargs)
     g.add(labels)
     dwg.add(g)
 

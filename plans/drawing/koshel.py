@@ -18,7 +18,7 @@ import numpy as np
 
 from ..constructions.koshel import KoshelSheet
 from .canvas import Canvas, fmt
-from .marks import arrow as _arrow, bounds, markup as _markup, vector as _vector
+from .marks import arrow as _arrow, bounds, markup as _markup, union, vector as _vector
 from .scheme import scheme_layers
 from .sheet import FORMATS, TitleBlock, new_sheet
 from .style import Style
@@ -105,8 +105,7 @@ def draw_koshel(sheet: KoshelSheet, heading: Heading, *, ident: str, style: Styl
     right = bounds([p.xy for p in plan.points] + [l.start for l in plan.lines] + [l.end for l in plan.lines])
     detail = detail_of(plan, ((PLAN_PANEL_MM, text_top - 2.0 - top),), style, "K_{V}")
     if detail is not None:      # images crowding the pole: enlarged beside the plan, within the panel
-        right = (min(right[0], detail.box[0]), min(right[1], detail.box[1]), max(right[2], detail.box[2]),
-                 max(right[3], detail.box[3]))
+        right = union(right, detail.box)
     notes = dwg.g(id=f"{ident}-notes")
     canvas.text(notes, (a.x0 + 3.0, a.y0 + 5.0), f"Scheme, μ_l = {sheet.mu_l:g} m/mm: the centre "
                 f"{_markup(sheet.centre.name)} of link {sheet.base} (Koshel, Fig. 1–2)", size=style.small_text)

@@ -10,7 +10,7 @@ import numpy as np
 from .canvas import Canvas, fmt
 from .style import Style
 
-__all__ = ["markup", "arrow", "vector", "bounds", "NO_HEAD_MM", "LABEL_ROOM_MM"]
+__all__ = ["markup", "arrow", "vector", "bounds", "union", "NO_HEAD_MM", "LABEL_ROOM_MM"]
 
 #: Room kept around a drawing's geometry for its labels, mm.
 LABEL_ROOM_MM = 10.0
@@ -58,3 +58,8 @@ def bounds(points: Iterable[Sequence[float]]) -> tuple[float, float, float, floa
     (x0, y0), (x1, y1) = arr.min(axis=0), arr.max(axis=0)
     r = LABEL_ROOM_MM
     return float(x0) - r, float(y0) - r, float(x1) + r, float(y1) + r
+
+
+def union(a: Sequence[float], b: Sequence[float]) -> tuple[float, float, float, float]:
+    """The box (x0, y0, x1, y1) holding boxes ``a`` and ``b`` (a drawing and its detail)."""
+    return min(a[0], b[0]), min(a[1], b[1]), max(a[2], b[2]), max(a[3], b[3])

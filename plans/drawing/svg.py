@@ -39,7 +39,7 @@ from ..constructions.detail import PlanDetail, pole_detail
 from ..constructions.plans import Plan
 from ..constructions.scheme import Scheme
 from .canvas import Canvas, fmt
-from .marks import LABEL_ROOM_MM, arrow as _arrow, bounds, markup as _markup, vector as _vector
+from .marks import LABEL_ROOM_MM, arrow as _arrow, bounds, markup as _markup, union, vector as _vector
 from .scheme import scheme_layers
 from .sheet import FORMATS, TitleBlock, choose_format, new_sheet, note_lines
 from .style import Style
@@ -128,8 +128,7 @@ def draw_plan(plan: Plan, heading: Heading, *, ident: str, style: Style = Style(
         if plan.vectors else None
     box = bounds(coords)
     if detail is not None:
-        box = (min(box[0], detail.box[0]), min(box[1], detail.box[1]), max(box[2], detail.box[2]),
-               max(box[3], detail.box[3]))
+        box = union(box, detail.box)
     dwg, canvas = _sheet(box, heading, scale, ident, style)
     plan_layers(dwg, canvas, plan, ident, style, unlabelled=_crowd(detail))
     if detail is not None:
