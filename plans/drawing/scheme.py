@@ -140,9 +140,10 @@ def scheme_layers(dwg, canvas: Canvas, sch: Scheme, ident: str, style: Style) ->
     g.attribs["data-mu"] = repr(sch.mu_l)
     g.attribs["data-plan"] = "scheme"
     link_w = fmt(style.link, 3)
-    in_cylinder = {c.barrel_link for c in sch.cylinders} | {c.rod_link for c in sch.cylinders}
+    barrel_links = {c.barrel_link for c in sch.cylinders}
+    in_cylinder = barrel_links | {c.rod_link for c in sch.cylinders}
     for k, gd in enumerate(sch.guides):
-        if not gd.fixed and gd.link in {c.barrel_link for c in sch.cylinders}:
+        if not gd.fixed and gd.link in barrel_links:
             continue   # the barrel is the rod's guide
         w = style.link if not gd.fixed else style.vector
         canvas.line(g, gd.start, gd.end, width=w, stroke_width=fmt(w, 3), id=f"{ident}-guide{k}")
