@@ -176,12 +176,14 @@ def _handout(source: str, out: str, quiet: bool, random: str | None, seed: str |
         bar = ho.Progress(count, "drawing")
         h, drawn = ho.random_variants(source, count, number, progress=bar)
     bar.close()
-    bank = None
+    bank, asked, assignments = None, None, None
     if moodle is not None:
         refuse_inputs([Path(moodle)], [p for p in (h.base, h.source) if p is not None], option="--moodle")
-        bank = ho.moodle_xml(h, drawn, [ho.variant_asked(d) for d in drawn], tolerance=tol)
+        asked = [ho.variant_asked(d) for d in drawn]
+        assignments = [ho.assignment_svg(h, d, a) for d, a in zip(drawn, asked)]    # drawn once: bank and folders
+        bank = ho.moodle_xml(h, drawn, asked, tolerance=tol, assignments=assignments)
     bar = ho.Progress(len(drawn), "writing")
-    ho.write_handout(h, drawn, out, progress=bar)
+    ho.write_handout(h, drawn, out, progress=bar, asked=asked, assignments=assignments)
     bar.close()
     if bank is not None:
         write_files({Path(moodle).name: bank}, Path(moodle).parent)

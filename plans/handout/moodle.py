@@ -64,13 +64,8 @@ def _cdata(text: str) -> str:
     return "<![CDATA[" + text.replace("]]>", "]]]]><![CDATA[>") + "]]>"
 
 
-def _markup_html(text: str) -> str:
-    """A sheet's markup line (``l_{OA} = 0.1 m``) as HTML."""
-    return symbol_html(text)
-
-
-def _question(h: Handout, d: Drawn, asked: Sequence[Asked], tolerance: float) -> list[str]:
-    svg = assignment_svg(h, d, tuple(asked))
+def _question(h: Handout, d: Drawn, asked: Sequence[Asked], tolerance: float, svg: str) -> list[str]:
+    """Variant ``d``'s Cloze question, its assignment sheet ``svg`` embedded as a PNG."""
     image = f"{d.name}-assignment.png"
     png = base64.b64encode(svg_to_png(svg, PNG_DPI)).decode("ascii")
     cells, task = given_and_task(h, d, tuple(asked))
@@ -79,8 +74,8 @@ def _question(h: Handout, d: Drawn, asked: Sequence[Asked], tolerance: float) ->
     body = (f"<p><strong>{html.escape(h.title)}, {html.escape(d.name.replace('-', ' '))}</strong></p>"
             f'<p><img src="@@PLUGINFILE@@/{image}" alt="{html.escape(d.name)}: assignment sheet" '
             f'style="max-width: 100%; height: auto;"></p>'
-            f"<p>Given: {'; '.join(_markup_html(c) for c in cells)}.</p>"
-            f"<p>{_markup_html(task)}</p>"
+            f"<p>Given: {'; '.join(symbol_html(c) for c in cells)}.</p>"
+            f"<p>{symbol_html(task)}</p>"
             f"<table><tr><th>quantity</th><th>your value</th><th>unit</th><th></th></tr>{rows}</table>"
             f"<p>Each value is accepted within ±{tolerance * 100:g} % of the exact one.</p>")
     name = f"{h.title}: {d.name}"
@@ -98,8 +93,11 @@ def _question(h: Handout, d: Drawn, asked: Sequence[Asked], tolerance: float) ->
 
 
 def moodle_xml(h: Handout, drawn: Sequence[Drawn], asked: Sequence[Sequence[Asked]], *,
-               tolerance: float = DEFAULT_TOLERANCE) -> str:
-    """The Moodle XML text of the handout: its category, then a Cloze question a variant."""
+               tolerance: float = DEFAULT_TOLERANCE, assignments: Sequence[str] | None = None) -> str:
+    """The Moodle XML text of the handout: its category, then a Cloze question a variant;
+    ``assignments``: the variants' assignment sheets (SVG text) when already drawn."""
+    if assignments is None:
+        assignments = [assignment_svg(h, d, tuple(a)) for d, a in zip(drawn, asked)]
     name = f"{h.title} ({h.base.name}" + (f", seed {h.seed}" if h.seed is not None else "") + ")"
     category = "$course$/top/" + name.replace("/", "-")     # a "/" would open a subcategory
     out = ['<?xml version="1.0" encoding="UTF-8"?>', "<quiz>",
@@ -108,7 +106,7 @@ def moodle_xml(h: Handout, drawn: Sequence[Drawn], asked: Sequence[Sequence[Aske
            f"    <category><text>{html.escape(category, quote=False)}</text></category>",
            f'    <info format="html"><text>{_cdata(f"<p>{html.escape(h.title)}: {len(drawn)} variants made by plans.</p>")}</text></info>',
            "  </question>"]
-    for d, a in zip(drawn, asked):
-        out += _question(h, d, a, tolerance)
+    for d, a, svg in zip(drawn, asked, assignments):
+        out += _question(h, d, a, tolerance, svg)
     out += ["</quiz>", ""]
     return "\n".join(out)

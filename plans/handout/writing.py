@@ -15,6 +15,7 @@ from typing import Callable, Sequence, TextIO
 
 from ..export import convert, output_names
 from ..output import check_folder, refuse_inputs, write_files
+from .asked import Asked
 from .assignment import assignment_svg, variant_asked
 from .index import index_html
 from .solving import variant_data
@@ -94,10 +95,13 @@ class Progress:
 
 
 def write_handout(h: Handout, drawn: Sequence[Drawn], out: str | Path, *,
-                  progress: Callable[[int, str], None] | None = None) -> list[Path]:
+                  progress: Callable[[int, str], None] | None = None,
+                  asked: Sequence[tuple[Asked, ...]] | None = None, assignments: Sequence[str] | None = None
+                  ) -> list[Path]:
     """Write every variant's folder, ``variants.toml``, the base scene's copy and ``index.html``
     into ``out``. Each folder is written all or nothing (:meth:`plans.Sheets.save`); an error
-    removes what this call wrote before it. Returns the paths written."""
+    removes what this call wrote before it. ``asked``, ``assignments``: what each variant asks
+    and its assignment sheet (SVG text), when already found. Returns the paths written."""
     out = Path(out)
     check_folder(out)
     base_name = _base_name(h)
@@ -105,11 +109,12 @@ def write_handout(h: Handout, drawn: Sequence[Drawn], out: str | Path, *,
     refuse_inputs([out / n for n in (VARIANTS, base_name, INDEX)]
                   + [out / d.name / n for d in drawn for n in _folder_names(d)], inputs)
     written: list[Path] = []
-    asked = [variant_asked(d) for d in drawn]
+    if asked is None:
+        asked = [variant_asked(d) for d in drawn]
     try:
         for k, d in enumerate(drawn, 1):
             folder = out / d.name
-            svg = assignment_svg(h, d, asked[k - 1])
+            svg = assignment_svg(h, d, asked[k - 1]) if assignments is None else assignments[k - 1]
             extra = {f"{d.name}-assignment.svg": svg}
             written += d.sheets.save(folder, formats="svg,pdf")
             written += write_files({**convert(extra, ("svg", "pdf")),
