@@ -16,6 +16,7 @@ from .export import (DEFAULT_DPI, FORMATS, MAX_DPI, MIN_DPI, check_png_sizes, co
                      parse_formats, require_cairo)
 from .output import check_folder, refuse_inputs, write_files
 from .pipeline import Rendered, render_scene
+from . import linalg as la
 
 __all__ = ["main"]
 
@@ -45,8 +46,8 @@ def _table(r: Rendered) -> str:
             for p in mech.sketch:
                 if m.carrier(p) == "0":
                     continue
-                v = float(np.linalg.norm(m.velocity(p)[i]))
-                a = f", a = {float(np.linalg.norm(m.acceleration(p)[i])):.4g}" if m.order >= 2 else ""
+                v = float(la.norm(m.velocity(p)[i]))
+                a = f", a = {float(la.norm(m.acceleration(p)[i])):.4g}" if m.order >= 2 else ""
                 row.append(f"{p}: v = {v:.4g}{a}")
             lines.append("    " + "; ".join(row))
             links = []

@@ -16,6 +16,7 @@ import numpy as np
 
 from .errors import SceneError
 from .scene import FRAME, Scene, Slider, DriveKind
+from . import linalg as la
 
 __all__ = ["Link", "Revolute", "Prismatic", "DriveSpec", "Mechanism", "build_mechanism", "LENGTH_RTOL"]
 
@@ -164,12 +165,12 @@ def _shape(name: str, pts: tuple[str, ...], sketch: Mapping[str, np.ndarray],
         return {p: sketch[p].copy() for p in pts}
 
     def dist(a: str, b: str) -> float:
-        return lengths.get(frozenset((a, b)), float(np.linalg.norm(sketch[a] - sketch[b])))
+        return lengths.get(frozenset((a, b)), float(la.norm(sketch[a] - sketch[b])))
 
     local = {pts[0]: sketch[pts[0]].copy()}
     p0, p1 = pts[0], pts[1]
     axis = sketch[p1] - sketch[p0]
-    ex = axis / np.linalg.norm(axis)
+    ex = axis / la.norm(axis)
     ey = np.array([-ex[1], ex[0]])
     d01 = dist(p0, p1)
     local[p1] = local[p0] + d01 * ex
@@ -182,7 +183,7 @@ def _shape(name: str, pts: tuple[str, ...], sketch: Mapping[str, np.ndarray],
         if given0 != given1:              # one distance given: at that distance, as sketched
             near = p0 if given0 else p1
             arm = sketch[pk] - sketch[near]
-            local[pk] = local[near] + dist(near, pk) * arm / np.linalg.norm(arm)
+            local[pk] = local[near] + dist(near, pk) * arm / la.norm(arm)
             continue
         d0, d1 = dist(p0, pk), dist(p1, pk)
         h = _height(d01, d0, d1)
@@ -195,7 +196,7 @@ def _shape(name: str, pts: tuple[str, ...], sketch: Mapping[str, np.ndarray],
     for pair, value in lengths.items():
         a, b = tuple(pair)
         if a in local and b in local:
-            got = float(np.linalg.norm(local[a] - local[b]))
+            got = float(la.norm(local[a] - local[b]))
             if abs(got - value) > 1e-7 * max(value, 1e-12):
                 raise SceneError(f"length {a}{b} = {value:g} m contradicts the link's other lengths "
                                  f"(they give {got:.6g} m); a link's shape must be consistently determined", key=key)
@@ -229,7 +230,7 @@ def _prismatic(s: Slider, links: Mapping[str, Link], sketch: Mapping[str, np.nda
                 break
         if direction is None:
             direction = sketch[q] - sketch[p]
-        direction = direction / np.linalg.norm(direction)
+        direction = direction / la.norm(direction)
     anchor = {}
     for name in (s.link, s.on):
         local = links[name].local
@@ -248,7 +249,7 @@ def _pair_label(s: Slider, links: Mapping[str, Link], sketch: Mapping[str, np.nd
     default = next((t for t in s.through if t in slider.local), slider.points[0])
     if s.on == FRAME or len(guide.points) >= len(slider.points):
         return default
-    span = max(float(np.linalg.norm(x - on_line)) for x in sketch.values()) or 1.0
+    span = max(float(la.norm(x - on_line)) for x in sketch.values()) or 1.0
     for p in guide.points:
         d = sketch[p] - on_line
         on = abs(float(d[0] * direction[1] - d[1] * direction[0])) <= 1e-9 * span

@@ -25,6 +25,7 @@ from .plan_builder import PRIME
 from .plans import MIN_DRAWN_MM
 from .scales import fitting_scale
 from .scheme import Scheme, scheme
+from .. import linalg as la
 
 __all__ = ["CentreMark", "CentreRay", "CentresSheet", "centres_sheet", "centre_label", "rest_note", "REACH"]
 
@@ -85,8 +86,8 @@ def _segment(points: list[np.ndarray]) -> tuple[tuple[float, float], tuple[float
     """The segment covering collinear ``points`` (mm), run on by OVERRUN_MM at both ends."""
     pts = np.array(points)
     u = pts[-1] - pts[0]
-    u = u / (np.linalg.norm(u) or 1.0)
-    t = (pts - pts[0]) @ u
+    u = u / (la.norm(u) or 1.0)
+    t = la.matmul(pts - pts[0], u)
     return _xy(pts[0] + (t.min() - OVERRUN_MM) * u), _xy(pts[0] + (t.max() + OVERRUN_MM) * u)
 
 
@@ -101,10 +102,10 @@ def centres_sheet(motion: Motion, i: int) -> CentresSheet:
     near = {}
     for name, c in ic.absolute.items():
         p = c.point[i]
-        if not np.isnan(p[0]) and np.linalg.norm(p - middle) <= REACH * size:
+        if not np.isnan(p[0]) and la.norm(p - middle) <= REACH * size:
             near[name] = p
     specials = _special_points(motion, i)
-    reach = [v for v in specials.values() if np.linalg.norm(v[0] - middle) <= REACH * size]
+    reach = [v for v in specials.values() if la.norm(v[0] - middle) <= REACH * size]
     travel = [motion.position(p) for p in mech.sketch]   # every position: the scheme's guides cover the travel
     every = np.concatenate([np.concatenate(travel), np.array(list(near.values()) + [r[0] for r in reach]).reshape(-1, 2)])
     ext = every.max(axis=0) - every.min(axis=0)
@@ -119,10 +120,10 @@ def centres_sheet(motion: Motion, i: int) -> CentresSheet:
             marks.append(CentreMark(label, name, _xy(near[name] / mu), None, _xy(anchor), False))
             for p in link_pts:
                 x = world[p]
-                if np.linalg.norm(x - near[name]) / mu < 1e-9:
+                if la.norm(x - near[name]) / mu < 1e-9:
                     continue   # the centre is this point (a pivot on the frame)
                 rays.append(CentreRay(f"r:{p}/{label}", _xy(near[name] / mu), _xy(x / mu),
-                                      float(np.linalg.norm(x - near[name]))))
+                                      float(la.norm(x - near[name]))))
                 through = [near[name] / mu, x / mu]
                 other = _neighbour_centre(mech, name, p, near)
                 if other is not None:
@@ -137,17 +138,17 @@ def centres_sheet(motion: Motion, i: int) -> CentresSheet:
             if not np.any(d):
                 continue   # no direction either (cannot happen off rest; kept as a guard)
         else:
-            d = (c.point[i] - anchor * mu) / np.linalg.norm(c.point[i] - anchor * mu)
+            d = (c.point[i] - anchor * mu) / la.norm(c.point[i] - anchor * mu)
         marks.append(CentreMark(label, name, None, _xy(d), _xy(anchor), bool(infinite)))
     special_marks = []
     for label, (s, v) in specials.items():
-        if np.linalg.norm(s - middle) > REACH * size:
+        if la.norm(s - middle) > REACH * size:
             continue
         special_marks.append((label.split(":")[0], _xy(s / mu)))
         base = _base_of(motion, label)
         centre = near.get(base)
         # S–P_base ⊥ v_S, unless S is the centre itself (v_S = 0 up to rounding)
-        if centre is not None and np.linalg.norm(s - centre) / mu > MIN_DRAWN_MM:
+        if centre is not None and la.norm(s - centre) / mu > MIN_DRAWN_MM:
             lines.append(_segment([s / mu, centre / mu]))
     resting = tuple(name for name, c in ic.absolute.items() if c.at_rest(i))
     notes = (rest_note(resting, float(motion.rate_scale(1)[i])),) if resting else ()

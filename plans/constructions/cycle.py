@@ -18,6 +18,7 @@ from ..scene import FRAME
 from .plans import Plan, PlanPoint, PlanVector, velocity_plan
 from .scales import SERIES, extent_of, fitting_scale
 from .scheme import Scheme, scheme
+from .. import linalg as la
 
 __all__ = ["PositionsSheet", "Trace", "Cell", "VelocitiesSheet", "positions_sheet", "velocities_sheet",
            "value_table", "shifted", "GRID_MM", "TABLE_ROW_MM"]
@@ -134,7 +135,7 @@ def value_table(motion: Motion) -> ValueTable:
     mech = motion.mechanism
     points = tuple(p for p in mech.sketch if motion.carrier(p) != FRAME and p not in mech.links[FRAME].local)
     links = tuple(n for n in mech.moving if n != mech.drive.link and len(mech.links[n].points) >= 2)
-    speed = [np.linalg.norm(motion.velocity(p), axis=1) for p in points]
+    speed = [la.norm(motion.velocity(p), axis=1) for p in points]
     omega = [motion.links[n].omega for n in links]
     rows = tuple((float(i), float(motion.values[i]), *(float(v[i]) for v in speed), *(float(w[i]) for w in omega))
                  for i in range(len(motion)))

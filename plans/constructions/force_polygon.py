@@ -18,6 +18,7 @@ import numpy as np
 from ..errors import ConstructionError
 from .plan_values import EXTENSION_MM, ConstructionLine, PlanPoint
 from .scales import SERIES, _series_values
+from .. import linalg as la
 
 __all__ = ["ForceTerm", "ForceVector", "ForcePlan", "force_plan", "KINDS", "CLOSURE_REL", "FORCE_REFERENCE_MM",
            "FORCE_SERIES", "FORCE_PLAN_MAX_MM", "component_of", "force_scale", "ForceDetail", "force_details",
@@ -201,7 +202,7 @@ def force_plan(group: str, terms: Sequence[ForceTerm], *, internal: Sequence[For
     if len(drawn) == 2:
         # two forces, equal and opposite: the second beside the first (b′ → a′), not back along it
         d = xy[1] - xy[0]
-        off = np.array([d[1], -d[0]]) / float(np.linalg.norm(d)) * TWO_FORCE_OFFSET_MM
+        off = np.array([d[1], -d[0]]) / float(la.norm(d)) * TWO_FORCE_OFFSET_MM
         ends = [labels[1] + "′", labels[0] + "′"]
         points += [PlanPoint(ends[0], _pt(xy[1] + off)), PlanPoint(ends[1], _pt(xy[0] + off))]
         second = vectors[1]
@@ -238,7 +239,7 @@ def force_plan(group: str, terms: Sequence[ForceTerm], *, internal: Sequence[For
     for j, t in enumerate(sides):
         if t.kind == "reaction_n":
             a, b = xy[j], xy[(j + 1) % n]
-            u = (b - a) / float(np.linalg.norm(b - a))
+            u = (b - a) / float(la.norm(b - a))
             lines.append(ConstructionLine(_pt(a - EXTENSION_MM * u), _pt(b + EXTENSION_MM * u), t.quantity, group))
     return ForcePlan(group, float(mu), labels[0], points, tuple(vectors), tuple(lines), tuple(terms_), tuple(totals),
                      tuple(kept))

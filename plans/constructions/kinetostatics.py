@@ -23,6 +23,7 @@ from .forces import (BalanceForce, BalanceMoment, ForcePlan, ForceTerm, Lever, L
                      zhukovsky_lever)
 from .plans import Plan
 from .scales import fitting_scale
+from .. import linalg as la
 
 __all__ = ["group_force_plans", "lever", "lever_value", "lever_scale", "lever_plan_scale", "LEVER_PLAN_MM"]
 
@@ -91,11 +92,11 @@ def lever(motion: Motion, forces: Forces, i: int, plan: Plan) -> Lever:
     # a load or moment below ZERO_REL of the largest (a rounding zero, e.g. I·ε at a dead
     # centre) has no line of action to speak of: it is left off the lever
     given = [l for l in forces.loads if l.kind != "balance"]
-    biggest = max([float(np.linalg.norm(l.force[i])) for l in given] + [0.0])
+    biggest = max([float(la.norm(l.force[i])) for l in given] + [0.0])
     size = motion.mechanism.size
     biggest = max([biggest * size] + [abs(float(c.moment[i])) for c in forces.couples if c.kind != "balance"]) / size
     loads = [LeverLoad(l.quantity, image(l.link, l.point[i]), _pt(l.force[i]))
-             for l in given if float(np.linalg.norm(l.force[i])) > ZERO_REL * biggest]
+             for l in given if float(la.norm(l.force[i])) > ZERO_REL * biggest]
     couples = []
     for c in forces.couples:
         if c.kind == "balance" or abs(float(c.moment[i])) <= ZERO_REL * biggest * size:
@@ -103,11 +104,11 @@ def lever(motion: Motion, forces: Forces, i: int, plan: Plan) -> Lever:
         a, e = _ends(motion, c.link, i)
         names = _end_names(motion, c.link)
         couples.append(LeverCouple(c.quantity, float(c.moment[i]), (image(c.link, a), image(c.link, e)),
-                                   float(np.linalg.norm(e - a)), _pt(e - a), labels=names))
+                                   float(la.norm(e - a)), _pt(e - a), labels=names))
     if b.kind == "moment":
         d = motion.mechanism.drive
         a, e = motion.position(d.pivot, d.link)[i], motion.position(d.tip, d.link)[i]
-        balance = BalanceMoment((image(d.link, a), image(d.link, e)), float(np.linalg.norm(e - a)), _pt(e - a))
+        balance = BalanceMoment((image(d.link, a), image(d.link, e)), float(la.norm(e - a)), _pt(e - a))
     elif b.kind == "actuator":      # F on the rod, −F on the cylinder: F at the relative image
         rod, cyl = image(b.link, b.point[i]), image(b.reacts_on, b.point[i])
         pole = plan.point(plan.pole)

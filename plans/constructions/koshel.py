@@ -31,6 +31,7 @@ from .detail import enlargeable
 from .plans import AT_REST, EXTENSION_MM, UNCERTAIN_MM, ConstructionLine, Plan, PlanPoint
 from .scales import fitting_scale
 from .scheme import Scheme, scheme
+from .. import linalg as la
 
 __all__ = ["fit_segment", "KOSHEL_MAX_MM", "NICE_MM", "KoshelLine", "SpecialVector", "KoshelSheet", "koshel_sheet",
            "SCHEME_PANEL_MM"]
@@ -70,7 +71,7 @@ def fit_segment(plan: Plan, segment_mm: float = UNCERTAIN_MM, limit: float = KOS
     lines = []
     for l in plan.lines:
         a, b = np.array(s(l.start)), np.array(s(l.end))
-        u = (b - a) / (np.linalg.norm(b - a) or 1.0)
+        u = (b - a) / (la.norm(b - a) or 1.0)
         grow = EXTENSION_MM * (1.0 - f)
         lines.append(ConstructionLine(tuple(map(float, a - grow * u)), tuple(map(float, b + grow * u)), l.quantity,
                                       l.group))
@@ -176,7 +177,7 @@ def koshel_sheet(motion: Motion, i: int, g: ComplexGroup, plan: Plan, segment: f
     pins = [p.point for p in g.inner if p.kind == "R"]
     driven = next(r for r in g.rods if r.form == "RR" and r.outer.b != FRAME)
     x_name, y_name = driven.inner.point, driven.outer.point
-    speed = max(float(np.linalg.norm(motion.velocity(p, base)[i])) for p in pins)
+    speed = max(float(la.norm(motion.velocity(p, base)[i])) for p in pins)
     # the lines of known direction: base pins of rods on the frame (variant 1) …
     known = []                                   # (name, point m, unit direction ⊥ v, words)
     for rod, ax in zip(g.rods, motion.special_points[g.name].axes):
@@ -192,11 +193,11 @@ def koshel_sheet(motion: Motion, i: int, g: ComplexGroup, plan: Plan, segment: f
         if link != base:
             continue
         specials.append((name, s))
-        if float(np.linalg.norm(v)) > AT_REST * speed:
+        if float(la.norm(v)) > AT_REST * speed:
             moving.append((name, s, v))
         else:
             resting.append(name)
-    lines_m = [(n, p, d) for n, p, d, _ in known] + [(n, s, J(v) / np.linalg.norm(v)) for n, s, v in moving]
+    lines_m = [(n, p, d) for n, p, d, _ in known] + [(n, s, J(v) / la.norm(v)) for n, s, v in moving]
     if len(lines_m) < 2:
         raise ConstructionError(f"fewer than two lines of known direction for the centre of link {base}")
     centre = _meet(lines_m[0][1], lines_m[0][2], lines_m[1][1], lines_m[1][2])
@@ -206,10 +207,10 @@ def koshel_sheet(motion: Motion, i: int, g: ComplexGroup, plan: Plan, segment: f
     pts = np.array(list(world.values()))
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     middle, size = (lo + hi) / 2.0, float(np.hypot(*(hi - lo))) or mech.size
-    near = float(np.linalg.norm(centre - middle)) <= REACH * size
-    specials = [(n, s) for n, s in specials if np.linalg.norm(s - middle) <= REACH * size]
+    near = float(la.norm(centre - middle)) <= REACH * size
+    specials = [(n, s) for n, s in specials if la.norm(s - middle) <= REACH * size]
     every_moving = moving
-    moving = [(n, s, v) for n, s, v in moving if np.linalg.norm(s - middle) <= REACH * size]
+    moving = [(n, s, v) for n, s, v in moving if la.norm(s - middle) <= REACH * size]
     k_v = plan.mu
     # μl: the series scale that fits the scheme, the centre and the special points; coarsened
     # (at most COARSEN times) so that V_S, drawn in K_V, fits too — else the longest V_S and
@@ -234,7 +235,7 @@ def koshel_sheet(motion: Motion, i: int, g: ComplexGroup, plan: Plan, segment: f
             mu = fitting(lim)
         if fits(mu) or not moving:
             break
-        drop = max(moving, key=lambda m: float(np.linalg.norm(m[2])))
+        drop = max(moving, key=lambda m: float(la.norm(m[2])))
         moving = [m for m in moving if m[0] != drop[0]]
         specials = [x for x in specials if x[0] != drop[0]]
     if not fits(mu):
@@ -244,7 +245,7 @@ def koshel_sheet(motion: Motion, i: int, g: ComplexGroup, plan: Plan, segment: f
     if near:
         mark = CentreMark(pname, base, _xy(centre / mu), None, _xy(anchor), False)
     else:
-        d = (centre - anchor * mu) / np.linalg.norm(centre - anchor * mu)
+        d = (centre - anchor * mu) / la.norm(centre - anchor * mu)
         mark = CentreMark(pname, base, None, _xy(d), _xy(anchor), False)
     # the construction lines, each through its points and on to P_j (or towards it)
     lines = []
@@ -257,20 +258,20 @@ def koshel_sheet(motion: Motion, i: int, g: ComplexGroup, plan: Plan, segment: f
         if near:
             on.append(centre / mu)
         else:
-            u = (centre - p) / np.linalg.norm(centre - p)
+            u = (centre - p) / la.norm(centre - p)
             on.append(p / mu + TOWARDS_MM * u)
         names = [n] + [m for m, s in specials if m != n and abs(_cross(d, s - p)) < 1e-9 * size]
         a, b = _segment(on)
         lines.append(KoshelLine(", ".join(names), a, b))
         covered.append((p, d))
-    vectors = tuple(SpecialVector(n, _xy(s / mu), _xy(s / mu + v / k_v), float(np.linalg.norm(v)))
+    vectors = tuple(SpecialVector(n, _xy(s / mu), _xy(s / mu + v / k_v), float(la.norm(v)))
                     for n, s, v in moving)
     rays = tuple(CentreRay(f"r:{x}/{pname}", _xy(centre / mu), _xy(world[x] / mu),
-                           float(np.linalg.norm(world[x] - centre))) for x in pins) if near else ()
+                           float(la.norm(world[x] - centre))) for x in pins) if near else ()
     vec = {v.quantity: v for v in plan.vectors}
     first = x_name
     order = [first] + [p for p in pins if p != first]
-    proportion = tuple((x, vec[f"v:{x}"].length, float(np.linalg.norm(world[x] - centre)) / mu) for x in order)
+    proportion = tuple((x, vec[f"v:{x}"].length, float(la.norm(world[x] - centre)) / mu) for x in order)
     steps = _steps(motion, i, g, plan, segment, mu, pname, known, every_moving, moving, resting, proportion, x_name, y_name,
                    driven)
     return KoshelSheet(sch, mu, base, mark, tuple(lines), tuple((n, _xy(s / mu)) for n, s in specials), vectors,
@@ -330,7 +331,7 @@ def _steps(motion, i, g, plan, segment, mu, pname, known, moving, drawn, resting
     vec = {v.quantity: v for v in plan.vectors}
     py = vec[f"v:{y}"]
     if crank:
-        l_oy = float(np.linalg.norm(motion.position(y)[i] - motion.position(o)[i]))
+        l_oy = float(la.norm(motion.position(y)[i] - motion.position(o)[i]))
         out.append(f"4) K_{{V}} = V_{{{y}}} / p{y.lower()} = ω_1·l_{{{o}{y}}} / p{y.lower()} = {abs(motion.drive_rates(i)[0]):g} 1/s · "
                    f"{l_oy:.4g} m / {py.length:.2f} mm = {plan.mu:.4g} (m/s)/mm.")
     else:

@@ -26,6 +26,7 @@ from ..kinematics import Motion
 from ..kinematics.sliders import Sliding
 from ..scene import FRAME
 from .plan_values import EXTENSION_MM, MIN_DRAWN_MM, ConstructionLine, PlanPoint, PlanVector
+from .. import linalg as la
 
 
 def _label(motion: Motion, point: str, link: str) -> str:
@@ -206,8 +207,8 @@ class _Builder:
 
     def line(self, through, direction: np.ndarray, reach, quantity: str, group: str) -> None:
         """A construction line through ``through`` with ``direction``, covering points ``reach``."""
-        u = direction / np.linalg.norm(direction)
-        t = [float(np.dot(np.subtract(r, through), u)) for r in reach] + [0.0]
+        u = direction / la.norm(direction)
+        t = [float(la.dot(np.subtract(r, through), u)) for r in reach] + [0.0]
         a = np.add(through, (min(t) - EXTENSION_MM) * u)
         b = np.add(through, (max(t) + EXTENSION_MM) * u)
         self.lines.append(ConstructionLine(tuple(map(float, a)), tuple(map(float, b)), quantity, group))

@@ -15,6 +15,7 @@ from ..kinematics.state import J
 from ..scene import FRAME
 from .plan_builder import _Builder, _at_pole, _same
 from .relations import Relation
+from .. import linalg as la
 
 
 def _rigid(b: _Builder, rel: Relation, sym: str) -> None:
@@ -28,7 +29,7 @@ def _rigid(b: _Builder, rel: Relation, sym: str) -> None:
     if sym == "v" or not rel.pair:
         if rel.group == "I" and sym == "v":
             return  # the crank tip's velocity relative to the fixed pivot is its absolute velocity
-        value = float(np.linalg.norm(b.quantity(rel.x, link) - b.quantity(rel.y, link)))
+        value = float(la.norm(b.quantity(rel.x, link) - b.quantity(rel.y, link)))
         b.vector(q, tail, head, value, "relative", optional=not rel.pair)
         if rel.pair:
             b.line(tail, J(r), [head], q, rel.line_group)
@@ -38,14 +39,14 @@ def _rigid(b: _Builder, rel: Relation, sym: str) -> None:
     if rel.group == "I" and e == 0.0:
         return  # a crank turning uniformly: πa is the normal component itself
     n_xy = b.put(("n", xn, yn), f"n_{xl}{yl}", np.add(tail, normal / b.mu))
-    both = b.vector(f"{q}:n", tail, n_xy, float(np.linalg.norm(normal)), "normal")
-    both &= b.vector(f"{q}:t", n_xy, head, abs(e) * float(np.linalg.norm(r)), "tangential")
+    both = b.vector(f"{q}:n", tail, n_xy, float(la.norm(normal)), "normal")
+    both &= b.vector(f"{q}:t", n_xy, head, abs(e) * float(la.norm(r)), "tangential")
     b.line(n_xy, J(r), [head], f"{q}:t", rel.line_group)
     # the whole relative acceleration a→b beside its components (the textbook's a_BA); left
     # out where the absolute a:X draws that very segment (y at the pole), where one component
     # is zero (the other is the whole), and never from a special point (no side of the link)
     if both and rel.y not in b.extra:
-        b.vector(q, tail, head, float(np.linalg.norm(b.quantity(rel.x, link) - b.quantity(rel.y, link))), "relative",
+        b.vector(q, tail, head, float(la.norm(b.quantity(rel.x, link) - b.quantity(rel.y, link))), "relative",
                  optional=True)
 
 
@@ -73,7 +74,7 @@ def _close_figures(b: _Builder, sym: str) -> None:
             q = f"{sym}:{b.name(x, link)}/{b.name(y, link)}"
             if q in drawn or joined(tail, head):
                 continue
-            b.vector(q, tail, head, float(np.linalg.norm(b.quantity(x, link) - b.quantity(y, link))), "relative")
+            b.vector(q, tail, head, float(la.norm(b.quantity(x, link) - b.quantity(y, link))), "relative")
             drawn.add(q)
 
 
@@ -107,7 +108,7 @@ def _slide(b: _Builder, rel: Relation, sym: str, pole) -> None:
     tail, head = b.image(rel.x, known), b.image(rel.x, moving)
     q = f"{sym}:{ml}/{kl}"
     if sym == "v":
-        value = float(np.linalg.norm(b.quantity(rel.x, moving) - b.quantity(rel.x, known)))
+        value = float(la.norm(b.quantity(rel.x, moving) - b.quantity(rel.x, known)))
         b.vector(q, tail, head, value, "relative")
         b.line(tail, u, [head], q, rel.line_group)
         return
@@ -119,6 +120,6 @@ def _slide(b: _Builder, rel: Relation, sym: str, pole) -> None:
     coriolis = sense * slide.coriolis[b.i]
     k_xy = b.put(("k", ml, kl), f"k_{b.joined_label(rel.x, moving)}{b.joined_label(rel.x, known)}",
                  np.add(tail, coriolis / b.mu))
-    b.vector(f"{q}:cor", tail, k_xy, float(np.linalg.norm(coriolis)), "coriolis")
+    b.vector(f"{q}:cor", tail, k_xy, float(la.norm(coriolis)), "coriolis")
     b.vector(f"{q}:r", k_xy, head, abs(float(slide.a[b.i])), "sliding")
     b.line(k_xy, u, [head], f"{q}:r", rel.line_group)

@@ -74,6 +74,7 @@ from .plan_vectors import _close_figures, _rigid, _slide, _solved_before
 from .relations import Relation, _complex_relations, _driven_relations, relations
 from .special_route import _base_point, _route, _special
 from .uncertain import AT_REST, UNCERTAIN_MM, uncertain_plan
+from .. import linalg as la
 
 __all__ = ["PlanPoint", "PlanVector", "ConstructionLine", "Plan", "Relation", "relations",
            "velocity_plan", "acceleration_plan", "uncertain_plan", "EXTENSION_MM", "UNCERTAIN_MM"]
@@ -106,7 +107,7 @@ def _plan(motion: Motion, i: int, mu: float, kind: str) -> Plan:
         if link == FRAME:
             continue
         head = b.image(name, link)
-        b.vector(f"{sym}:{name}", pole, head, float(np.linalg.norm(b.quantity(name, link))), "absolute")
+        b.vector(f"{sym}:{name}", pole, head, float(la.norm(b.quantity(name, link))), "absolute")
     _close_figures(b, sym)
     b.finish()
     points, final = b.plan_points()

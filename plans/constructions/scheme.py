@@ -22,6 +22,7 @@ import numpy as np
 from ..kinematics import Motion
 from ..scene import FRAME, DriveKind
 from .scheme_drive import Cylinder, DriveArrow, clearance, cylinders, drive_arrows
+from .. import linalg as la
 
 __all__ = ["Scheme", "Block", "Guide", "Arc", "scheme", "BLOCK_MM", "HEAD_MM", "SENSE_HEAD_MM"]
 
@@ -154,7 +155,7 @@ def scheme(motion: Motion, i: int, mu_l: float, *, senses: bool = False) -> Sche
             reference = 0.0
         crank_segments = _segments(points, links, blocks, guides)
         pins = np.array([points[p] for p in joints if p != d.pivot], dtype=float).reshape(-1, 2)
-        arcs = _drive_arcs(d, motion.drive_rates(i), c, float(np.linalg.norm(tip - c)), crank, phi, reference,
+        arcs = _drive_arcs(d, motion.drive_rates(i), c, float(la.norm(tip - c)), crank, phi, reference,
                            crank_segments, pins)
     if d.kind == DriveKind.COUPLER:    # the given ω, ε of the driving coupler, on it
         arcs += _sense_arcs(motion, i, points, blocks, (d.link,))
@@ -227,7 +228,7 @@ def _blocks(motion: Motion, i: int, mu_l: float, points) -> tuple[list[Block], d
 
             def room(sign: float) -> float:
                 c = np.asarray(pin) + sign * s * u
-                return min((float(np.linalg.norm(p - c)) for p in far), default=math.inf)
+                return min((float(la.norm(p - c)) for p in far), default=math.inf)
 
             sign = 1.0 if room(1.0) >= room(-1.0) else -1.0
             centre = np.asarray(pin) + sign * s * u
@@ -248,7 +249,7 @@ def _guide(motion: Motion, i: int, mu_l: float, pr, offset: float, points) -> Gu
     anchor = state.point(pr.anchor[pr.guide])[i] / mu_l
     travel = motion.position(pr.label) / mu_l
     anchors = state.point(pr.anchor[pr.guide]) / mu_l
-    rel = [float(np.dot(travel[j] - anchors[j], u[j])) for j in range(len(travel))]
+    rel = [float(la.dot(travel[j] - anchors[j], u[j])) for j in range(len(travel))]
     rel += [r + offset for r in rel] if offset else []
     fixed = pr.guide == FRAME
     margin = BLOCK_MM[0] / 2 + (GUIDE_MARGIN_MM if fixed else SLOT_MARGIN_MM)
@@ -258,7 +259,7 @@ def _guide(motion: Motion, i: int, mu_l: float, pr, offset: float, points) -> Gu
     stem = None
     if not fixed:
         own = [np.asarray(points[p]) for p in mech.links[pr.guide].points]
-        along = [float(np.dot(p - anchor, ui)) for p in own]
+        along = [float(la.dot(p - anchor, ui)) for p in own]
         across = [abs(float(ui[0] * (p - anchor)[1] - ui[1] * (p - anchor)[0])) for p in own]
         on = [t for t, d in zip(along, across) if d < ON_LINE_MM]
         if on:
@@ -364,7 +365,7 @@ def _place_arrow(c: np.ndarray, length: float, r_phi: float, crank: float, sense
         [(span, 180.0, r) for span in (70.0, 50.0) for r in behind]
 
     def nearest(pts: np.ndarray, to: np.ndarray) -> float:
-        return float(np.min(np.linalg.norm(pts[:, None] - to[None], axis=-1))) if len(to) else math.inf
+        return float(np.min(la.norm(pts[:, None] - to[None], axis=-1))) if len(to) else math.inf
 
     best = None
     for span, off, r in order:

@@ -19,6 +19,7 @@ import numpy as np
 
 from ..kinematics import Motion
 from ..scene import FRAME, DriveKind
+from .. import linalg as la
 
 __all__ = ["Cylinder", "DriveArrow", "cylinders", "drive_arrows", "BARREL_MM", "PISTON_ROOM_MM", "PIN_ROOM_MM"]
 
@@ -106,7 +107,7 @@ def cylinders(motion: Motion, i: int, mu_l: float) -> tuple[Cylinder, ...]:
         (pivot, mouth), (pin, head) = body, rod
         at = {p: motion.position(p) / mu_l for p in (pivot, mouth, pin, head)}    # (N, 2) mm
         u_all = at[pin] - at[pivot]
-        lengths = np.linalg.norm(u_all, axis=1)
+        lengths = la.norm(u_all, axis=1)
         if np.any(lengths < 1e-9):
             continue
         u_all = u_all / lengths[:, None]
@@ -146,7 +147,7 @@ def clearance(samples: np.ndarray, segments: np.ndarray) -> float:
     p = samples[:, None]
     ab = b - a
     t = np.clip(np.einsum("ijk,ijk->ij", p - a, ab) / np.maximum(np.einsum("ijk,ijk->ij", ab, ab), 1e-12), 0.0, 1.0)
-    return float(np.min(np.linalg.norm(p - (a + t[..., None] * ab), axis=-1)))
+    return float(np.min(la.norm(p - (a + t[..., None] * ab), axis=-1)))
 
 
 def drive_arrows(motion: Motion, i: int, mu_l: float, block: tuple[Point, float] | None,
@@ -161,12 +162,12 @@ def drive_arrows(motion: Motion, i: int, mu_l: float, block: tuple[Point, float]
         return ()
     pr = d.guide
     u = motion.links[pr.guide].direction(pr.direction)[i]
-    u = u / np.linalg.norm(u)
+    u = u / la.norm(u)
     n = np.array([-u[1], u[0]])
     cyl = next((c for c in cyls if c.rod_link == d.link and c.barrel_link == pr.guide), None)
     if cyl is not None:
         a, b = np.asarray(cyl.barrel[1]), np.asarray(cyl.rod[1])
-        t_mouth, t_pin = float(np.dot(a - cyl.rod[0], u)), float(np.dot(b - cyl.rod[0], u))
+        t_mouth, t_pin = float(la.dot(a - cyl.rod[0], u)), float(la.dot(b - cyl.rod[0], u))
         mid = np.asarray(cyl.rod[0]) + 0.5 * (t_mouth + t_pin) * u
         base, sides = BARREL_MM / 2 + ARROW_GAP_MM, (1.0, -1.0)
     elif block is not None:

@@ -16,6 +16,7 @@ from ..structure import ComplexGroup
 from .plan_builder import PRIME, _Builder
 from .plan_vectors import _rigid
 from .relations import Relation
+from .. import linalg as la
 
 
 def _special(b: _Builder, g: ComplexGroup, sym: str) -> None:
@@ -47,13 +48,13 @@ def _special(b: _Builder, g: ComplexGroup, sym: str) -> None:
         q = f"{sym}:{s_name}/{k_name}"
         total = b.quantity(s_name, g.base) - b.quantity(pin, ax[r].known)
         if sym == "v":
-            b.vector(q, k_img, s_img, float(np.linalg.norm(total)), "relative")
+            b.vector(q, k_img, s_img, float(la.norm(total)), "relative")
             b.line(k_img, e, [s_img], q, f"{g.name}:{s_name}")
             continue
         c = found.known[(route, r)][i] - b.quantity(pin, ax[r].known)      # normal (and Coriolis) components, known
         n_xy = b.put(("n", s_name, k_name), f"n_{s_name}{k_lab}", np.add(k_img, c / b.mu))
-        b.vector(f"{q}:n", k_img, n_xy, float(np.linalg.norm(c)), "normal")
-        b.vector(f"{q}:t", n_xy, s_img, float(np.linalg.norm(total - c)), "tangential")
+        b.vector(f"{q}:n", k_img, n_xy, float(la.norm(c)), "normal")
+        b.vector(f"{q}:t", n_xy, s_img, float(la.norm(total - c)), "tangential")
         b.line(n_xy, e, [s_img], f"{q}:t", f"{g.name}:{s_name}")
     third = next(r for r in range(3) if r not in p.rods)
     pins = [_base_point(x) for x in ax]
@@ -76,7 +77,7 @@ def _route(ax: tuple[special.Axis, ...], pts: tuple[special.SpecialPoint, ...], 
     lines (s; the third pin from s; the two other pins from it), the route whose worst pair is
     the farthest from parallel (largest smallest |sin|) is drawn."""
     def sin(u: np.ndarray, d: np.ndarray) -> float:   # |sin| between a segment u and a unit direction d
-        n = float(np.linalg.norm(u))
+        n = float(la.norm(u))
         return abs(float(u[0] * d[1] - u[1] * d[0])) / n if n > 0.0 else 0.0
 
     n = i

@@ -16,6 +16,7 @@ from ..scene import FRAME
 from ..structure import ComplexGroup
 from .plan_builder import _Builder
 from .plan_values import Plan
+from .. import linalg as la
 
 __all__ = ["uncertain_plan", "UNCERTAIN_MM", "AT_REST"]
 
@@ -49,32 +50,32 @@ def uncertain_plan(motion: Motion, i: int, g: ComplexGroup) -> Plan | None:
     v_x = motion.velocity(x_name, g.base)[i]
     v_y = motion.velocity(y_name, known)[i]
     omega = float(motion.links[g.base].omega[i])
-    if np.linalg.norm(v_x) <= AT_REST * np.linalg.norm(v_y):
-        raise ConstructionError(f"group {g.name} is momentarily at rest (|v_{x_name}| = {np.linalg.norm(v_x):.1e} m/s "
-                                f"while |v_{y_name}| = {np.linalg.norm(v_y):.3g} m/s): every image of the group is "
+    if la.norm(v_x) <= AT_REST * la.norm(v_y):
+        raise ConstructionError(f"group {g.name} is momentarily at rest (|v_{x_name}| = {la.norm(v_x):.1e} m/s "
+                                f"while |v_{y_name}| = {la.norm(v_y):.3g} m/s): every image of the group is "
                                 "at the pole, so Koshel's arbitrary segment has nothing to scale")
-    if abs(omega) * mech.size <= AT_REST * float(np.linalg.norm(v_x)):
+    if abs(omega) * mech.size <= AT_REST * float(la.norm(v_x)):
         raise ConstructionError(f"base link {g.base} of group {g.name} translates at this position (ω{g.base} = "
                                 f"{omega:.1e} rad/s): its instantaneous centre is at infinity, so Koshel's "
                                 "construction from it does not apply")
     centre = motion.centre_from(g.base, x_name, i)     # P of the base link (ω ≠ 0 here)
-    b = _Builder(motion, i, float(np.linalg.norm(v_x)) / UNCERTAIN_MM, "velocity")
+    b = _Builder(motion, i, float(la.norm(v_x)) / UNCERTAIN_MM, "velocity")
     pole = b.put(("pole",), "p", (0.0, 0.0))
     x_img = b.image(x_name, g.base)
     b.line(pole, J(motion.position(x_name)[i] - centre), [x_img], f"v:{x_name}", f"{g.name}:P")
-    b.vector(f"v:{x_name}", pole, x_img, float(np.linalg.norm(v_x)), "absolute")
+    b.vector(f"v:{x_name}", pole, x_img, float(la.norm(v_x)), "absolute")
     y_img = b.image(y_name, known)
     r = motion.position(y_name)[i] - motion.position(x_name)[i]
     b.line(x_img, J(r), [y_img], f"v:{y_name}/{x_name}", f"{g.name}:{y_name}")
     b.line(pole, v_y, [y_img], f"v:{y_name}", f"{g.name}:{y_name}")
-    b.vector(f"v:{y_name}/{x_name}", x_img, y_img, float(np.linalg.norm(v_y - v_x)), "relative")
-    b.vector(f"v:{y_name}", pole, y_img, float(np.linalg.norm(v_y)), "absolute")
+    b.vector(f"v:{y_name}/{x_name}", x_img, y_img, float(la.norm(v_y - v_x)), "relative")
+    b.vector(f"v:{y_name}", pole, y_img, float(la.norm(v_y)), "absolute")
     for pair in g.inner:
         if pair.kind == "R" and pair.point != x_name:
             img = b.image(pair.point, g.base)
             v = motion.velocity(pair.point, g.base)[i]
             b.line(pole, J(motion.position(pair.point)[i] - centre), [img], f"v:{pair.point}", f"{g.name}:P")
-            b.vector(f"v:{pair.point}", pole, img, float(np.linalg.norm(v)), "absolute")
+            b.vector(f"v:{pair.point}", pole, img, float(la.norm(v)), "absolute")
     points, final = b.plan_points()
     pins = {p.point for p in g.inner if p.kind == "R"}
     similar = ((g.base, tuple(final[b.image_key(p, g.base)] for p in mech.links[g.base].points)),) \

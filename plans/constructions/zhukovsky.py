@@ -14,6 +14,8 @@ from typing import Sequence
 
 import numpy as np
 
+from .. import linalg as la
+
 from ..errors import ConstructionError
 from .force_polygon import _pt, _vec
 from .plan_values import PlanPoint
@@ -177,7 +179,7 @@ def _couple_direction(ends, length_m: float, direction, what: str) -> tuple[np.n
         raise ConstructionError(f"{what}: length {length_m!r} m is not a positive number")
     u = _unit(direction, what)
     d = e2 - e1
-    if abs(float(d @ u)) > PERPENDICULAR_REL * float(np.hypot(*d)) + 1e-9:
+    if abs(la.dot(d, u)) > PERPENDICULAR_REL * float(np.hypot(*d)) + 1e-9:
         raise ConstructionError(f"{what}: the images of its ends are not ⊥ the link's direction (ab ⊥ AB on a "
                                 "velocity plan): wrong ends or direction")
     return e1, e2, np.array([-u[1], u[0]]) / length_m
@@ -278,7 +280,7 @@ def zhukovsky_lever(plan, loads: Sequence[LeverLoad], balance: BalanceForce | Ba
             arm = abs(_cross(r - pole, u))
         if arm <= ZERO_ARM_REL * extent:        # its line passes through the pole: a rounding arm is none
             arm, m = 0.0, 0.0
-        foot = r - float((r - pole) @ u) * u
+        foot = r - la.dot(r - pole, u) * u
         forces.append(LeverForce(q, k, label, _pt(r), _pt(f), _pt(r), _pt(r + f / mu), fn, m, arm, _pt(foot), src,
                                  _pt(u)))
     rotated = []

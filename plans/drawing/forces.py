@@ -57,8 +57,9 @@ from .canvas import Canvas, fmt
 from .marks import LABEL_ROOM_MM, NO_HEAD_MM, arrow as _arrow, bounds, markup as _markup, union
 from .sheet import FORMATS, TitleBlock, choose_format, new_sheet
 from .style import Style
-from .svg import Heading, _decimal, _tag, detail_frame, plan_group
+from .svg import Heading, _decimal, _tag, detail_frame, direction_text, plan_group
 from .text import ASCENT, DESCENT, runs, width, wrap
+from .. import linalg as la
 
 __all__ = ["draw_force_plans", "draw_lever", "symbol", "PANEL_GAP_MM", "TABLE_TEXT_MM", "TABLE_LEAD_MM"]
 
@@ -171,10 +172,10 @@ def _side_label_direction(tail, head, centre) -> np.ndarray:
     """Perpendicular to a side, away from the polygon's centre."""
     d = np.subtract(head, tail)
     n = np.array([-d[1], d[0]])
-    if np.linalg.norm(n) < 1e-12:
+    if la.norm(n) < 1e-12:
         return np.array([0.6, 0.8])
     mid = np.add(tail, head) / 2
-    return n if float(n @ (mid - np.asarray(centre))) >= 0 else -n
+    return n if la.dot(n, mid - np.asarray(centre)) >= 0 else -n
 
 
 # --- force plans ------------------------------------------------------------------------------
@@ -402,7 +403,7 @@ def _letter_vertices(canvas: Canvas, labels, points, hidden, centre, ident: str,
     for k, (xy, text) in enumerate(_vertex_labels(points, hidden)):
         away = np.subtract(xy, centre)
         canvas.label(labels, xy, text, size=style.small_text + 0.5,
-                     prefer=away if np.linalg.norm(away) > 1e-9 else (0.6, 0.8), ident=f"{ident}-l{k}",
+                     prefer=away if la.norm(away) > 1e-9 else (0.6, 0.8), ident=f"{ident}-l{k}",
                      digits=False, near=0.5)
 
 
@@ -664,7 +665,7 @@ def _lever_layers(dwg, canvas: Canvas, lever: Lever, ident: str, style: Style, *
         if f.value / lever.mu < SHORT_MM:
             # far too short for its ends to carry a direction (a zero, or vanishing, balancing
             # element: its head is its tail in floating point): the direction of its line
-            el.attribs["data-direction"] = repr(math.degrees(math.atan2(-f.direction[1], f.direction[0])) + 0.0)
+            el.attribs["data-direction"] = direction_text(f.direction[0], -f.direction[1])
         el.attribs["data-h"] = repr(f.arm)
         el.attribs["data-moment"] = repr(f.moment)
         el.attribs["data-kind"] = f.kind
@@ -683,15 +684,15 @@ def _lever_layers(dwg, canvas: Canvas, lever: Lever, ident: str, style: Style, *
         # the line of action on to the foot, when the foot is off the arrow
         t, hd, foot = np.asarray(f.tail), np.asarray(f.head), np.asarray(f.foot)
         d = hd - t
-        s = float((foot - t) @ d / (d @ d)) if float(d @ d) > 0 else 0.0
+        s = la.dot(foot - t, d) / la.dot(d, d) if la.dot(d, d) > 0 else 0.0
         if s < 0 or s > 1:
             near = t if s < 0 else hd
             ext = canvas.line(cons, near, foot, id=f"{ident}-e{k}", stroke_dasharray=style.dash)
             ext.attribs["data-construction"] = "line of action"
         if f.arm >= 3 * RIGHT_ANGLE_MM and math.dist(f.tail, f.head) > 0:
             e1 = (pole - foot) / f.arm
-            e2 = d / math.sqrt(float(d @ d))
-            if float((t - foot) @ e2) < 0:
+            e2 = d / math.sqrt(la.dot(d, d))
+            if la.dot(t - foot, e2) < 0:
                 e2 = -e2
             r = RIGHT_ANGLE_MM
             canvas.polyline(cons, [foot + r * e1, foot + r * (e1 + e2), foot + r * e2], id=f"{ident}-ra{k}")
@@ -718,7 +719,7 @@ def _lever_layers(dwg, canvas: Canvas, lever: Lever, ident: str, style: Style, *
             continue
         away = np.subtract(p.xy, centre)
         image_labels.append((0.0, (labels, p.xy, " ≡ ".join(_markup(s) for s in same)),
-                             dict(size=style.text, prefer=away if np.linalg.norm(away) > 1e-9 else (-0.6, -0.8),
+                             dict(size=style.text, prefer=away if la.norm(away) > 1e-9 else (-0.6, -0.8),
                                   ident=f"{ident}-l{k}", digits=False, near=0.5)))
     if short_first:
         arm_labels.sort(key=lambda ask: ask[0])         # only arms' labels here: the shortest arm first

@@ -25,6 +25,7 @@ from .sheet import FORMATS, TitleBlock, choose_format, new_sheet, note_lines
 from .style import Style
 from .svg import Heading, plan_layers
 from .text import runs, width
+from .. import linalg as la
 
 __all__ = ["draw_positions", "draw_velocities", "PIN_MM", "NOTE_ROOM_MM"]
 
@@ -90,7 +91,7 @@ def draw_positions(sheet: PositionsSheet, heading: Heading, *, ident: str, style
                              id=f"{ident}-trace{k}")
         el.attribs["data-point"] = t.point
     pivot_xy = np.asarray(sheet.poses[0].points[sheet.pivot])
-    radius = float(np.linalg.norm(np.subtract(sheet.poses[0].points[sheet.tip], pivot_xy)))
+    radius = float(la.norm(np.subtract(sheet.poses[0].points[sheet.tip], pivot_xy)))
     el = canvas.circle(traces, pivot_xy, radius, stroke=style.construction_colour, stroke_width=fmt(style.thin, 3),
                        stroke_dasharray=style.dash, id=f"{ident}-crank-circle")
     el.attribs["data-point"] = sheet.tip

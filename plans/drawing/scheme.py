@@ -16,6 +16,7 @@ from ..constructions.scheme_drive import ARROW_HEAD_MM, BARREL_MM, Cylinder, Dri
 from .canvas import Canvas, fmt
 from .marks import markup as _markup
 from .style import Style
+from .. import linalg as la
 
 __all__ = ["scheme_layers", "DOT_MM"]
 
@@ -30,7 +31,7 @@ ARC_STEP = 3.0
 def _hatch(a, b, side: float, style: Style) -> list[tuple[tuple[float, float], tuple[float, float]]]:
     """45° hatch strokes along segment a→b (paper mm, y up) on the ``side`` (+1 left, −1 right)."""
     a, b = np.asarray(a, float), np.asarray(b, float)
-    L = float(np.linalg.norm(b - a))
+    L = float(la.norm(b - a))
     u = (b - a) / L
     n = side * np.array([-u[1], u[0]])
     d = (n - u) / math.sqrt(2.0) * style.hatch_length
@@ -93,7 +94,7 @@ def _input_arrow(canvas: Canvas, g, labels, arrow: DriveArrow, ident: str, style
     """A linear drive's input arrow (v or a) along its guide, labelled."""
     key = f"{ident}-input{arrow.kind}{arrow.link}"
     u = np.subtract(arrow.end, arrow.start)
-    u = u / np.linalg.norm(u)
+    u = u / la.norm(u)
     stop = np.subtract(arrow.end, 0.8 * ARROW_HEAD_MM * u)
     el = canvas.line(g, arrow.start, stop, width=style.vector, stroke_width=fmt(style.vector, 3), id=key)
     el.attribs["data-kind"] = f"input-{arrow.kind}"
@@ -109,7 +110,7 @@ def _input_arrow(canvas: Canvas, g, labels, arrow: DriveArrow, ident: str, style
 def frame_guide(canvas: Canvas, g, gd, k: int, ident: str, style: Style) -> None:
     """The hatched ground line of frame guide ``gd`` (its ``k``-th), half a block below it."""
     off = BLOCK_MM[1] / 2
-    u = np.subtract(gd.end, gd.start) / np.linalg.norm(np.subtract(gd.end, gd.start))
+    u = np.subtract(gd.end, gd.start) / la.norm(np.subtract(gd.end, gd.start))
     n = np.array([-u[1], u[0]])
     a, b = np.add(gd.start, -off * n), np.add(gd.end, -off * n)
     canvas.line(g, a, b, width=style.vector, stroke_width=fmt(style.vector, 3), id=f"{ident}-gb{k}")
@@ -198,7 +199,7 @@ def scheme_layers(dwg, canvas: Canvas, sch: Scheme, ident: str, style: Style) ->
             c = barrels[name]
             prefer = np.array([-c.axis[1], c.axis[0]])
             arrows = [a for a in sch.inputs if a.link == c.rod_link]
-            if any(float(np.dot(np.subtract(a.start, c.rod[0]), prefer)) < 0 for a in arrows):
+            if any(float(la.dot(np.subtract(a.start, c.rod[0]), prefer)) < 0 for a in arrows):
                 prefer = -prefer   # the drive's arrows' side (they stand by the mouth), clear of the piston's name
             bottom = 0.5 * np.add(c.barrel[0], c.barrel[3])
             top = 0.5 * np.add(c.barrel[1], c.barrel[2])
@@ -209,7 +210,7 @@ def scheme_layers(dwg, canvas: Canvas, sch: Scheme, ident: str, style: Style) ->
             prefer, near = np.array([-c.axis[1], c.axis[0]]), 0.6
         elif len(pts) >= 2:
             u = xy[1] - xy[0]
-            u = u / (np.linalg.norm(u) or 1.0)
+            u = u / (la.norm(u) or 1.0)
             prefer = np.array([-u[1], u[0]])
             near = 0.6
         else:   # a block: its number by the block (moved off the pin, by the moved block)

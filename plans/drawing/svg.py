@@ -44,6 +44,7 @@ from .scheme import scheme_layers
 from .sheet import FORMATS, TitleBlock, choose_format, new_sheet, note_lines
 from .style import Style
 from .text import ASCENT, DESCENT, runs, width as text_width
+from .. import linalg as la
 
 __all__ = ["Heading", "draw_plan", "draw_scheme", "draw_centres", "plan_layers", "centre_rays", "fmt", "detail_of",
            "detail_caption", "detail_layers"]
@@ -64,10 +65,17 @@ class Heading:
     position: str
 
 
+def direction_text(dx: float, dy: float) -> str:
+    """The direction of (dx, dy) in degrees, in (−180°, 180°]: a vector along −x reads 180
+    whatever the sign of the rounding noise in dy (atan2 gives −180 for dy = −0.0)."""
+    deg = math.degrees(math.atan2(dy, dx)) + 0.0
+    return repr(180.0 if deg == -180.0 else deg)
+
+
 def _direction(canvas: Canvas, tail, head) -> str:
     """The exact direction tail → head in degrees, SVG paper frame (y down)."""
     (x0, y0), (x1, y1) = canvas.paper(tail), canvas.paper(head)
-    return repr(math.degrees(math.atan2(y1 - y0, x1 - x0)) + 0.0)
+    return direction_text(x1 - x0, y1 - y0)
 
 
 def _image_label(plan: Plan, xy) -> str | None:
@@ -106,13 +114,13 @@ def _preferred(xy, segments: list[tuple[tuple[float, float], tuple[float, float]
         for end, other in ((a, b), (b, a)):
             if math.dist(end, xy) < 1e-6:
                 d = np.subtract(other, end)
-                n = float(np.linalg.norm(d))
+                n = float(la.norm(d))
                 if n > 1e-9:
                     pull += d / n
-    if np.linalg.norm(pull) > 1e-6:
+    if la.norm(pull) > 1e-6:
         return -pull
     away = np.subtract(xy, centre)
-    return away if np.linalg.norm(away) > 1e-9 else np.array([0.6, 0.8])
+    return away if la.norm(away) > 1e-9 else np.array([0.6, 0.8])
 
 
 def draw_plan(plan: Plan, heading: Heading, *, ident: str, style: Style = Style(), notes: Sequence[str] = ()) -> str:

@@ -24,6 +24,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from .. import linalg as la
+
 from ..errors import PlansError
 from ..kinematics import analyse
 from ..kinematics.cycle import Cycle, output_motion
@@ -270,13 +272,13 @@ def _breaks(scene: Scene, cycle: Cycle, solve, sense: float, start: float) -> np
                 probes.append(lambda m, t, f=f, x_k=x_k: t.x(f.origin) - x_k)
         if f.oppose:
             if f.vector is not None:        # its point's velocity along the force's line
-                probes.append(lambda m, t, f=f, d=np.array(f.vector, float): m.velocity(f.at, f.link) @ d)
+                probes.append(lambda m, t, f=f, d=np.array(f.vector, float): la.matmul(m.velocity(f.at, f.link), d))
             else:                           # along the velocity itself: where it reverses
                 v = motion.velocity(f.at, f.link)
                 flip = np.flatnonzero(np.sum(v[:-1] * v[1:], axis=1) < 0.0)
                 for j in flip:
                     ref = v[j].copy()
-                    out += _refine(lambda m, t, ref=ref, f=f: m.velocity(f.at, f.link) @ ref, solve,
+                    out += _refine(lambda m, t, ref=ref, f=f: la.matmul(m.velocity(f.at, f.link), ref), solve,
                                    grid[j:j + 1], grid[j + 1:j + 2], 1)
     for probe in probes:
         g = probe(motion, travel)

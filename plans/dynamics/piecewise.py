@@ -11,13 +11,14 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.polynomial import legendre
+from .. import linalg as la
 
 __all__ = ["NODES", "Piecewise", "nodes_of", "fit"]
 
 #: Gauss–Legendre nodes per panel (degree 7 polynomials; a panel's quadrature is exact to degree 15).
 NODES = 8
 _T, _W = legendre.leggauss(NODES)
-_V_INV = np.linalg.inv(legendre.legvander(_T, NODES - 1))
+_V_INV = la.inv(legendre.legvander(_T, NODES - 1))
 
 
 def nodes_of(edges: np.ndarray) -> np.ndarray:
@@ -87,7 +88,7 @@ class Piecewise:
 def fit(edges: np.ndarray, values: np.ndarray) -> Piecewise:
     """The piecewise polynomial through ``values`` at :func:`nodes_of` (``edges``)."""
     y = np.asarray(values, dtype=float).reshape(len(edges) - 1, NODES)
-    return Piecewise(np.asarray(edges, dtype=float), y @ _V_INV.T)
+    return Piecewise(np.asarray(edges, dtype=float), la.matmul(y, _V_INV.T))
 
 
 def combine(*parts: tuple[float, Piecewise]) -> Piecewise:

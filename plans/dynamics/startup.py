@@ -4,7 +4,7 @@
 
 (moments in the crank's sense of rotation, M_r the loads' reduced moment: negative where they
 resist) integrated by SciPy's ``solve_ivp`` (DOP853, an explicit Runge–Kutta of order 8 with
-error control; ``rtol``/``atol`` are its tolerances) until ``t_end``. The loads are those of the
+error control, its sums in fixed order: :mod:`.dop853`; ``rtol``/``atol`` are its tolerances) until ``t_end``. The loads are those of the
 steady cycle (:mod:`.machine`): a force that opposes its point's velocity, or acts on a stroke,
 takes the sense it has with the crank turning forward.
 
@@ -25,6 +25,7 @@ import numpy as np
 from ..errors import PlansError
 from ..scene.dynamics import Motor
 from .machine import MachineDynamics
+from .dop853 import DOP853
 from .motor import motor_moment
 
 __all__ = ["Startup", "Steady", "startup", "RTOL", "ATOL", "STEADY_BAND", "SAMPLES"]
@@ -101,7 +102,7 @@ def startup(machine: MachineDynamics, motor: Motor, t_end: float, *, rtol: float
         return y[1] if t > 0.0 else 1.0
     stalls.terminal, stalls.direction = True, -1
 
-    sol = solve_ivp(rhs, (0.0, t_end), np.array([0.0, 0.0]), method="DOP853", rtol=rtol, atol=atol,
+    sol = solve_ivp(rhs, (0.0, t_end), np.array([0.0, 0.0]), method=DOP853, rtol=rtol, atol=atol,
                     dense_output=True, events=stalls)
     if sol.status == 1 and len(sol.t_events[0]):
         ts = float(sol.t_events[0][0])
@@ -168,7 +169,7 @@ def steady_cycle(machine: MachineDynamics, motor: Motor, guess: float, *, rtol: 
         e = 0.5 * i0 * w0 * w0
         pieces = []
         for a, b in zip(edges[:-1], edges[1:]):        # a jump of a load is an edge, never a step's inside
-            s = solve_ivp(de, (a, b), [e], method="DOP853", rtol=rtol, atol=1e-12 * max(e, 1.0), dense_output=dense)
+            s = solve_ivp(de, (a, b), [e], method=DOP853, rtol=rtol, atol=1e-12 * max(e, 1.0), dense_output=dense)
             if not s.success or s.y[0, -1] <= 0.0:
                 return None, pieces
             e = float(s.y[0, -1])

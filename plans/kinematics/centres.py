@@ -32,6 +32,7 @@ import numpy as np
 from ..scene import FRAME
 from .tolerances import INFINITY_RTOL, REST_RTOL
 from .state import J, Solution
+from .. import linalg as la
 
 __all__ = ["Centre", "Centres", "centres", "centre_from", "INFINITY_RTOL", "REST_RTOL"]
 
@@ -82,16 +83,16 @@ def _centre(motion: Solution, i: str, j: str, scale: np.ndarray) -> Centre:
     # the relative velocity field at a point of the link, for the infinity test
     x = si.origin
     v_rel = si.velocity(x) - sj.velocity(x)
-    speed = np.maximum(np.linalg.norm(v_rel, axis=1), np.abs(dw) * size)
+    speed = np.maximum(la.norm(v_rel, axis=1), np.abs(dw) * size)
     # at rest: the relative field v_rel(X0) + (ω_i − ω_j)·k × (X − X0) is below the bound at the
     # link's first point X0 and turns by no more than it over the mechanism's size
     x0 = si.point(next(iter(motion.mechanism.links[i].local.values())))
-    still = np.maximum(np.linalg.norm(si.velocity(x0) - sj.velocity(x0), axis=1), np.abs(dw) * size)
+    still = np.maximum(la.norm(si.velocity(x0) - sj.velocity(x0), axis=1), np.abs(dw) * size)
     rest = still <= REST_RTOL * scale
     finite = (np.abs(dw) * size > INFINITY_RTOL * speed) & ~rest
     safe = np.where(finite, dw, 1.0)
     point = np.where(finite[:, None], J(w) / safe[:, None], np.nan)
-    norm = np.linalg.norm(v_rel, axis=1)
+    norm = la.norm(v_rel, axis=1)
     infinite = ~finite & ~rest & (norm > 0.0)
     direction = np.where(infinite[:, None], J(v_rel) / np.where(norm > 0.0, norm, 1.0)[:, None], 0.0)
     return Centre((i, j), point, direction, rest)

@@ -24,6 +24,7 @@ from .figure import polar_sine
 from .generic import TOLERANCE
 from .tolerances import MAX_ITER
 from .state import LinkState, cos_sin
+from .. import linalg as la
 
 __all__ = ["CompiledGroup", "States"]
 
@@ -43,22 +44,10 @@ def _cos_sin(th: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return np.cos(th), np.sin(th)
 
 
-#: Matrix products of many positions are taken in blocks of this many rows: a block's product
-#: (≤ 512 × 48 × 8 multiply-adds) stays below the size from which OpenBLAS splits a product over
-#: threads, which for these skinny products is no gain and, on a busy machine, waits milliseconds
-#: for a second thread (measured: a class IV group at 3600 positions 3× slower).
-PRODUCT_ROWS = 512
-
-
 def _product(a: np.ndarray, w: np.ndarray) -> np.ndarray:
-    """a @ w for a (M, K), w (K, N), in blocks of PRODUCT_ROWS rows."""
-    m = len(a)
-    if m <= PRODUCT_ROWS:
-        return a @ w
-    out = np.empty((m, w.shape[1]))
-    for lo in range(0, m, PRODUCT_ROWS):
-        np.matmul(a[lo:lo + PRODUCT_ROWS], w, out=out[lo:lo + PRODUCT_ROWS])
-    return out
+    """a @ w for a (M, K), w (K, N), by :func:`plans.linalg.matmul` (the same bits on every
+    processor, and no wait for a second BLAS thread on these skinny products)."""
+    return la.matmul(a, w)
 
 
 # the 2×2 minors of a 4×4 matrix's rows (0, 1) and (2, 3) on the column pairs (i, j), and the
@@ -75,10 +64,10 @@ def _det(m: np.ndarray) -> np.ndarray:
     matrix), else numpy's. Used for signs away from zero (the exact figure comes from the SVD
     wherever it is small)."""
     if m.shape[-1] != 4:
-        return np.linalg.det(m)
+        return la.det(m)
     top = m[:, 0, _PAIRS_I] * m[:, 1, _PAIRS_J] - m[:, 0, _PAIRS_J] * m[:, 1, _PAIRS_I]
     low = m[:, 2, _PAIRS_I] * m[:, 3, _PAIRS_J] - m[:, 2, _PAIRS_J] * m[:, 3, _PAIRS_I]
-    return (top * low[:, _COMPLEMENT]) @ _PAIR_SIGN
+    return la.matmul(top * low[:, _COMPLEMENT], _PAIR_SIGN)
 
 
 def _max_abs(m: np.ndarray) -> np.ndarray:
@@ -305,7 +294,7 @@ class CompiledGroup:
                 break
             act = active[keep]
             try:
-                dx = np.linalg.solve(a[keep], -phi[keep][..., None])[..., 0]
+                dx = la.solve(a[keep], -phi[keep][..., None])[..., 0]
             except np.linalg.LinAlgError:
                 break
             dx[:, 2::3] /= self.size
@@ -315,7 +304,7 @@ class CompiledGroup:
 
     def _polish(self, q, rows, idx, a, phi, res) -> None:
         try:
-            dx = np.linalg.solve(a, -phi[..., None])[..., 0]
+            dx = la.solve(a, -phi[..., None])[..., 0]
         except np.linalg.LinAlgError:
             return
         dx[:, 2::3] /= self.size
@@ -334,10 +323,10 @@ class CompiledGroup:
         try:
             if reduced is None:
                 phi, a = self.evaluate(q, idx)
-                inv = np.linalg.inv(a)
+                inv = la.inv(a)
 
                 def step(phi):
-                    return (inv @ phi[..., None])[..., 0]
+                    return np.einsum("mij,mj->mi", inv, phi)
             else:
                 # revolute pairs only: A = [T B] (columns reordered), T constant = Q·[R₁; 0]:
                 # only the k×k blocks Q₂ᵀB are inverted per position (see :meth:`_reduced`)
@@ -411,7 +400,7 @@ class CompiledGroup:
         q1t, r1_inv_t, q1_js, q1_jc = self._blocks
         th = q[:, 2::3]
         c, s = _cos_sin(th)
-        c_inv = np.linalg.inv(c[:, None, :] * p_s - s[:, None, :] * p_c)    # (M, k, k)
+        c_inv = la.inv(c[:, None, :] * p_s - s[:, None, :] * p_c)    # (M, k, k)
         g = c[:, None, :] * q1_js - s[:, None, :] * q1_jc                      # Q₁ᵀB (M, 2k, k)
         cols = self.cols
         k2 = len(cols)
@@ -443,16 +432,16 @@ class CompiledGroup:
         if not self.prismatic:
             order = self.cols + list(range(2, n, 3))
             t = self.template[:, self.cols]
-            qm, r = np.linalg.qr(t, mode="complete")
+            qm, r = la.qr(t)
             diag = np.diag(r[:2 * k])
             if np.all(np.abs(diag) > 1e-9 * max(1.0, float(np.max(np.abs(diag))))):
                 perm = np.eye(n)[:, order]
-                c0 = np.linalg.det(perm) * np.linalg.det(qm)
+                c0 = la.det(perm) * la.det(qm)
                 q2 = qm[:, 2 * k:]
-                out = (float(np.sign(c0) * np.prod(np.sign(diag))), q2.T @ self._js, q2.T @ self._jc)
+                out = (float(np.sign(c0) * np.prod(np.sign(diag))), la.matmul(q2.T, self._js), la.matmul(q2.T, self._jc))
                 q1 = qm[:, :2 * k]
-                self._blocks = (np.ascontiguousarray(qm), np.ascontiguousarray(np.linalg.inv(r[:2 * k]).T),
-                                q1.T @ self._js, q1.T @ self._jc)
+                self._blocks = (np.ascontiguousarray(qm), np.ascontiguousarray(la.inv(r[:2 * k]).T),
+                                la.matmul(q1.T, self._js), la.matmul(q1.T, self._jc))
         self._reduced_ = out
         if key is not None:
             if len(_REDUCED) >= 64:

@@ -10,6 +10,7 @@ from ..model import Mechanism
 from .compiled import CompiledGroup, States, _cos_sin, _product
 from .generic import GroupEquations, _with_rates
 from .state import LinkState, _spin
+from .. import linalg as la
 
 __all__ = ["GroupRates"]
 
@@ -63,7 +64,7 @@ class GroupRates:
 
     def _solve(self, rhs: np.ndarray) -> np.ndarray:
         """The group's rates x (N, n) from A·x = −rhs (rhs scaled as A's rows; x unscaled)."""
-        x = np.linalg.solve(self.jacobian(), -rhs[..., None])[..., 0]
+        x = la.solve(self.jacobian(), -rhs[..., None])[..., 0]
         x[:, 2::3] /= self.size
         return x
 

@@ -26,6 +26,7 @@ import numpy as np
 
 from .compiled import CompiledGroup, _max_abs
 from .tolerances import COARSE_RTOL
+from .. import linalg as la
 
 __all__ = ["walk"]
 
@@ -99,7 +100,7 @@ def walk(group: CompiledGroup, sweep: np.ndarray, x: np.ndarray, q0: np.ndarray,
             if it == COARSE_ITER or ok.all() or not np.isfinite(r).all():
                 return q, ok, it, a
             try:
-                dx = np.linalg.solve(a, -phi[..., None])[..., 0]
+                dx = la.solve(a, -phi[..., None])[..., 0]
             except np.linalg.LinAlgError:
                 return q, ok & False, it, a
             dx[:, 2::3] /= size
@@ -110,7 +111,7 @@ def walk(group: CompiledGroup, sweep: np.ndarray, x: np.ndarray, q0: np.ndarray,
         lo, hi = _neighbours(x, j, step)
         dphi = group.difference(q, sweep[hi], sweep[lo]) / (x[hi] - x[lo])[:, None]
         try:
-            t = np.linalg.solve(a, -dphi[..., None])[..., 0]
+            t = la.solve(a, -dphi[..., None])[..., 0]
         except np.linalg.LinAlgError:
             return None
         if not np.isfinite(t).all():

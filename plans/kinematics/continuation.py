@@ -22,6 +22,7 @@ from .generic import GroupEquations
 from .state import LinkState
 from .tolerances import JUMP_RATIO
 from .walk import Walk, failure, step
+from .. import linalg as la
 
 __all__ = ["continue_group", "fast_walk", "newton_walk", "Stop"]
 
@@ -123,7 +124,7 @@ def _predicted_move(eq: GroupEquations, q: np.ndarray, known: dict[str, LinkStat
     walk's first step, which has no step before it."""
     st = eq.states(q[None, :], known)
     try:
-        dx = np.linalg.solve(eq.scaled_jacobian(st), -eq._scale_rows(eq.residual(st))[..., None])[0, :, 0]
+        dx = la.solve(eq.scaled_jacobian(st), -eq._scale_rows(eq.residual(st))[..., None])[0, :, 0]
     except np.linalg.LinAlgError:
         return 0.0
     return float(np.max(np.abs(dx[cols])))

@@ -24,6 +24,7 @@ from ..scene import FRAME
 from ..structure import Structure
 from .solve import analyse
 from .motion import Motion
+from .. import linalg as la
 
 __all__ = ["Output", "Cycle", "output_motion", "solve_cycle", "DENSE_MIN", "EXTREME_TOL_DEG"]
 
@@ -85,7 +86,7 @@ def _kind(mech: Mechanism, link: str) -> tuple[str, str, str]:
                          "it has no displacement or angle to draw over the cycle; name one that does in "
                          "[plans] output", key="plans.output")
     pivot = pivots[0]
-    far = max(mech.links[link].points, key=lambda q: float(np.linalg.norm(mech.sketch[q] - mech.sketch[pivot])))
+    far = max(mech.links[link].points, key=lambda q: float(la.norm(mech.sketch[q] - mech.sketch[pivot])))
     return "rocker", pivot, far
 
 

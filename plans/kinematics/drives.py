@@ -28,6 +28,7 @@ from ..model import Mechanism
 from ..scene import DriveKind
 from ..structure import DrivenGroup
 from .generic import GroupEquations, States, _dot
+from .. import linalg as la
 
 __all__ = ["DrivenEquations"]
 
@@ -52,7 +53,7 @@ class DrivenEquations(GroupEquations):
         else:
             p = d.guide
             # the anchors' offset along the guide in the sketch, where every pose is the identity
-            self.target = values + float(np.dot(p.anchor[p.slider] - p.anchor[p.guide], p.direction))
+            self.target = values + float(la.dot(p.anchor[p.slider] - p.anchor[p.guide], p.direction))
 
     def at(self, i: int) -> "DrivenEquations":
         """The same equations at position ``i`` alone (its drive value)."""

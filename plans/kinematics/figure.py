@@ -28,6 +28,7 @@ turning columns summed per set, S the sliding columns.
 from __future__ import annotations
 
 import numpy as np
+from .. import linalg as la
 
 __all__ = ["polar_sine", "reduced_figure"]
 
@@ -38,9 +39,9 @@ def polar_sine(m: np.ndarray, det: np.ndarray | None = None) -> np.ndarray:
     angles, 0 when they are dependent (1 for c = 0); ``det``: det m, when already at hand."""
     if m.shape[-1] == 0:
         return np.ones(m.shape[0])
-    norms = np.prod(np.linalg.norm(m, axis=1), axis=1)
+    norms = np.prod(la.norm(m, axis=1), axis=1)
     if det is None:
-        det = np.linalg.det(m)
+        det = la.det(m)
     with np.errstate(invalid="ignore", divide="ignore"):
         out = np.abs(det) / norms
     return np.where(norms > 0.0, np.minimum(out, 1.0), 0.0)
@@ -59,9 +60,9 @@ def reduced_figure(rows: np.ndarray, sets: np.ndarray, sliding: list[int]) -> np
     if m - k2 != sets.shape[1] + len(sliding):
         return None
     t = rows[:, :, [c for c in range(n) if c % 3 != 2]]
-    q = np.linalg.svd(t, full_matrices=True)[0][:, :, k2:]     # (N, m, m − 2k)
+    q = la.qr(t)[0][:, :, k2:]     # (N, m, m − 2k): an orthonormal basis of the complement of t's columns
     s = np.zeros((n_pos, m, len(sliding)))
     for j, r in enumerate(sliding):
         s[:, r, j] = -1.0
-    cols = np.concatenate([rows @ sets, s], axis=2)
-    return polar_sine(np.swapaxes(q, 1, 2) @ cols)
+    cols = np.concatenate([la.matmul(rows, sets), s], axis=2)
+    return polar_sine(la.matmul(np.swapaxes(q, 1, 2), cols))

@@ -31,6 +31,7 @@ from ..model import Mechanism
 from .figure import reduced_figure
 from .state import J, LinkState
 from .tolerances import MAX_ITER, NEWTON_RTOL
+from .. import linalg as la
 
 __all__ = ["GroupEquations", "NewtonResult", "TOLERANCE", "MAX_ITER"]
 
@@ -222,7 +223,7 @@ class GroupEquations:
         if figure is None:
             sv = np.linalg.svd(a, compute_uv=False)
             figure = sv[:, -1] / sv[:, 0]
-        return np.sign(np.linalg.det(a)) * figure
+        return np.sign(la.det(a)) * figure
 
     def _figure_rows(self, states: States, a: np.ndarray) -> tuple[list[np.ndarray], list[tuple[str, str | None]], list]:
         """The rows of the reduced figure (scaled as ``a``'s), the links each angle row turns
@@ -274,7 +275,7 @@ class GroupEquations:
         if a is None:
             a = self._scaled(self.jacobian(states))
         rhs = self._scale_rows(rhs.copy())
-        x = np.linalg.solve(a, -rhs[..., None])[..., 0]
+        x = la.solve(a, -rhs[..., None])[..., 0]
         x[:, 2::3] /= self.size
         return x
 
@@ -326,7 +327,7 @@ class GroupEquations:
                 break
             a = self._scaled(self.jacobian(st))
             try:
-                dx = np.linalg.solve(a, -phi[..., None])[..., 0]
+                dx = la.solve(a, -phi[..., None])[..., 0]
             except np.linalg.LinAlgError:   # a singular position: converged if the residual says so
                 return NewtonResult(q, it, res, res <= limit)
             dx[:, 2::3] /= self.size   # the scaled unknown is size·Δθ

@@ -29,6 +29,7 @@ from ..scene import FRAME
 from ..structure import Group, Joint
 from .tolerances import PARALLEL_DET
 from .state import J, LinkState, _pair, _rotated, cos_sin, cross
+from .. import linalg as la
 
 __all__ = ["Candidate", "candidates", "conditioning", "velocities", "accelerations", "SINGULAR_REASON"]
 
@@ -135,8 +136,8 @@ def _rrr(g: Group, mech: Mechanism, states: States, tol: float, branch: int | No
     D, F = _pin(mech, states, g.d), _pin(mech, states, g.f)
     Lm = mech.links[g.m].local
     Ln = mech.links[g.n].local
-    lm = float(np.linalg.norm(Lm[g.e.point] - Lm[g.d.point]))
-    ln = float(np.linalg.norm(Ln[g.e.point] - Ln[g.f.point]))
+    lm = float(la.norm(Lm[g.e.point] - Lm[g.d.point]))
+    ln = float(la.norm(Ln[g.e.point] - Ln[g.f.point]))
     d = F - D
     L2 = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1]
     L = np.sqrt(L2)
@@ -164,10 +165,10 @@ def _rrp(g: Group, mech: Mechanism, states: States, tol: float, branch: int | No
     D = _pin(mech, states, g.d)
     pr, p = g.f.prismatic, g.f.other
     Lm, Ln = mech.links[g.m].local, mech.links[g.n].local
-    lm = float(np.linalg.norm(Lm[g.e.point] - Lm[g.d.point]))
+    lm = float(la.norm(Lm[g.e.point] - Lm[g.d.point]))
     theta = states[p].theta
     Q, u = _line(states[p], pr.anchor[p], pr.direction)
-    h = float(np.dot(Ln[g.e.point] - pr.anchor[g.n], pr.normal))   # E's offset from the line, fixed in n
+    h = float(la.dot(Ln[g.e.point] - pr.anchor[g.n], pr.normal))   # E's offset from the line, fixed in n
     Qh = Q + h * J(u) if h != 0.0 else Q
     w = Qh - D
     wx, wy, ux, uy = w[:, 0], w[:, 1], u[:, 0], u[:, 1]
@@ -194,7 +195,7 @@ def _rpr(g: Group, mech: Mechanism, states: States, tol: float, branch: int | No
     D, F = _pin(mech, states, g.d), _pin(mech, states, g.f)
     pr = g.e.prismatic
     Lm, Ln = mech.links[g.m].local, mech.links[g.n].local
-    h = float(np.dot(Lm[g.d.point] - pr.anchor[g.m], pr.normal) - np.dot(Ln[g.f.point] - pr.anchor[g.n], pr.normal))
+    h = float(la.dot(Lm[g.d.point] - pr.anchor[g.m], pr.normal) - la.dot(Ln[g.f.point] - pr.anchor[g.n], pr.normal))
     d = D - F
     L = np.sqrt(d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1])
     beta = np.arctan2(d[:, 1], d[:, 0])
@@ -222,7 +223,7 @@ def _prp(g: Group, mech: Mechanism, states: States, tol: float, branch: int | No
     for joint, link, L in ((g.d, g.m, Lm), (g.f, g.n, Ln)):
         pr = joint.prismatic
         Q, u = _line(states[joint.other], pr.anchor[joint.other], pr.direction)
-        h = float(np.dot(L[E] - pr.anchor[link], pr.normal))
+        h = float(la.dot(L[E] - pr.anchor[link], pr.normal))
         lines.append((Q + h * J(u), u))
     Ew, det = _intersect(*lines[0], *lines[1])
     valid = np.abs(det) > PARALLEL_DET

@@ -39,6 +39,7 @@ from ..model import Mechanism
 from ..structure import ComplexGroup, Rod
 from .state import J, LinkState, cross
 from .tolerances import CROSS_CHECK_RTOL
+from .. import linalg as la
 
 __all__ = ["Axis", "SpecialPoint", "TriadSolution", "GroupPoints", "axes", "special_points", "solve_triad", "condition",
            "supports", "triad_groups", "triads", "disagreement", "disagreements", "group_points", "CROSS_CHECK_RTOL",
@@ -175,7 +176,7 @@ def disagreement(motion, triad: TriadSolution) -> float:
 
 
 def _unit(v: np.ndarray) -> np.ndarray:
-    return v / np.linalg.norm(v, axis=-1, keepdims=True)
+    return v / la.norm(v, axis=-1, keepdims=True)
 
 
 def axes(g: ComplexGroup, mech: Mechanism, states: States) -> tuple[Axis, ...]:
@@ -207,7 +208,7 @@ def condition(g: ComplexGroup, mech: Mechanism, states: States) -> np.ndarray:
     c = ax[0].pin
     size = mech.size
     rows = np.stack([np.column_stack([x.direction, cross(x.point - c, x.direction) / size]) for x in ax], axis=1)
-    return np.linalg.det(rows) / np.prod(np.linalg.norm(rows, axis=2), axis=1)
+    return la.det(rows) / np.prod(la.norm(rows, axis=2), axis=1)
 
 
 def special_points(g: ComplexGroup, mech: Mechanism, states: States) -> tuple[SpecialPoint, ...]:

@@ -15,6 +15,7 @@ from functools import cached_property
 from typing import Mapping
 
 import numpy as np
+from .. import linalg as la
 
 __all__ = ["J", "cross", "rotate", "cos_sin", "LinkState", "Solution"]
 
@@ -229,7 +230,7 @@ class Solution:
             s = self.links[name]
             field = s.velocity if order == 1 else s.acceleration
             for local in mech.links[name].local.values():
-                np.maximum(out, np.linalg.norm(field(s.point(local)), axis=1), out=out)
+                np.maximum(out, la.norm(field(s.point(local)), axis=1), out=out)
         return out
 
     def __len__(self) -> int:

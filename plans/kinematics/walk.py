@@ -21,6 +21,7 @@ from ..model import Mechanism
 from ..scene import FRAME, LINEAR_STEPS_PER_SIZE, STEP_DEG, DriveKind   # the walk's steps, bounded by the scene
 from .state import LinkState, rotate
 from .tolerances import SINGULAR_SIN
+from .. import linalg as la
 
 __all__ = ["Walk", "walk_to", "step", "start", "drive_states", "set_drive_rates", "check_crossing", "failure",
            "limit_reached", "group_label", "fmt", "requested_beyond"]
@@ -92,7 +93,7 @@ def drive_states(mech: Mechanism, values: np.ndarray) -> dict[str, LinkState]:
         states[d.link] = LinkState(theta, pivot - rotate(local[d.pivot], theta))
     elif d.kind == DriveKind.LINEAR:
         g = d.guide
-        across = g.normal * float(np.dot(g.anchor[FRAME] - g.anchor[d.link], g.normal))
+        across = g.normal * float(la.dot(g.anchor[FRAME] - g.anchor[d.link], g.normal))
         states[d.link] = LinkState(zero.copy(), across + values[:, None] * g.direction)
     return states
 

@@ -21,6 +21,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import linalg as la
+
 from ..errors import PlansError, SceneError
 from ..kinematics import Motion
 from ..kinematics.cycle import Cycle
@@ -187,7 +189,7 @@ def external_force(f: AppliedForce, motion: Motion, travel: Travel | None) -> np
         return np.abs(mag)[:, None] * d
     d = np.array(f.vector, float)
     d = d / math.hypot(*d)
-    along = v @ d
+    along = la.matmul(v, d)
     sense = np.where(rest | (np.abs(along) <= REST_RTOL * speed.max(initial=0.0)), 0.0, -np.sign(along))
     return (np.abs(mag) * sense)[:, None] * d
 

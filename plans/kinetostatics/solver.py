@@ -20,6 +20,7 @@ from .balance import _BalanceSpec
 from .loads import Couple, Load, Travel, applied_loads, force_sum, moment_about
 from .pairs import _Geometry, _Pair, _split, _unit
 from .results import ForceTerm, GroupForces, Reaction
+from .. import linalg as la
 
 #: A group's linear system (scaled to O(1) coefficients) whose condition number exceeds this
 #: has no unique solution: the balancing force's line passes through the pivot, or the group
@@ -253,10 +254,10 @@ class _Solver:
                                  key="balance.angle")
             raise PlansError(f"group {name}: its equilibrium equations are singular at {value} (condition "
                              f"{cond[i]:.2e}); the reactions have no unique solution there")
-        sol = np.linalg.solve(a, b[..., None])[..., 0]
+        sol = la.solve(a, b[..., None])[..., 0]
         # one step of iterative refinement: an ill-conditioned group (a cylinder's, cond ~1e5)
         # leaves its equations unbalanced by cond × eps after the plain solve, eps after this
-        sol += np.linalg.solve(a, (b - np.einsum("nij,nj->ni", a, sol))[..., None])[..., 0]
+        sol += la.solve(a, (b - np.einsum("nij,nj->ni", a, sol))[..., None])[..., 0]
         for j, p in enumerate(pairs):
             c = 2 * j
             if p.kind == "R":

@@ -12,6 +12,8 @@ import re
 
 import numpy as np
 
+from .. import linalg as la
+
 __all__ = ["PALE"]
 
 #: A paint lighter than this (relative luminance, 0 … 1) is paper, not ink.
@@ -117,15 +119,15 @@ def _transform(text: str | None) -> np.ndarray:
             c, s = math.cos(math.radians(a[0])), math.sin(math.radians(a[0]))
             t = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
             if len(a) == 3:
-                t = np.array([[1, 0, a[1]], [0, 1, a[2]], [0, 0, 1]]) @ t @ np.array([[1, 0, -a[1]], [0, 1, -a[2]],
-                                                                                      [0, 0, 1]])
+                t = la.matmul(la.matmul(np.array([[1, 0, a[1]], [0, 1, a[2]], [0, 0, 1]]), t),
+                              np.array([[1, 0, -a[1]], [0, 1, -a[2]], [0, 0, 1]]))
         elif name == "skewX":
             t = np.array([[1, math.tan(math.radians(a[0])), 0], [0, 1, 0], [0, 0, 1]])
         elif name == "skewY":
             t = np.array([[1, 0, 0], [math.tan(math.radians(a[0])), 1, 0], [0, 0, 1]])
         else:
             raise ValueError(f"cannot read transform {name}({args})")
-        m = m @ t
+        m = la.matmul(m, t)
     return m
 
 

@@ -13,6 +13,8 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+
+from .. import linalg as la
 import shapely
 
 from ..drawing.text import ASCENT, DESCENT, _em
@@ -81,7 +83,7 @@ class _Reader:
             if k in st:
                 ctx[k] = st[k]
         if "transform" in st:
-            m = m @ _transform(st["transform"])
+            m = la.matmul(m, _transform(st["transform"]))
         classes = (_attr(el, "class") or "").split()
         ident = _attr(el, "id") or ""
         if "title-block" in classes or ident.endswith("-title-text"):
@@ -231,7 +233,7 @@ class _Reader:
                           max(i[1] for i in items) + shift, max(i[3] for i in items)))
         x0, y0 = min(b[0] for b in boxes), min(b[1] for b in boxes)
         x1, y1 = max(b[2] for b in boxes), max(b[3] for b in boxes)
-        (X0, Y0, _), (X1, Y1, _) = m @ (x0, y0, 1.0), m @ (x1, y1, 1.0)
+        (X0, Y0, _), (X1, Y1, _) = la.matmul(m, (x0, y0, 1.0)), la.matmul(m, (x1, y1, 1.0))
         words = "".join(g[0] for g in kept)
         ident = _attr(el, "id")
         name = f"{words!r}" + (f" ({ident})" if ident else f" in {ctx.get('where', '?')}")

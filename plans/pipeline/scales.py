@@ -11,6 +11,7 @@ from ..constructions import Scales, choose_scales
 from ..constructions.scales import extent_of
 from ..kinematics import Motion
 from ..scene import Scene
+from .. import linalg as la
 
 __all__ = ["scene_scales"]
 
@@ -27,11 +28,11 @@ def scene_scales(scene: Scene, motion: Motion, rest: tuple[bool, bool] = (False,
     ref_point = mech.drive.tip if mech.drive.kind.angular else mech.drive.guide.label
     if motion.order >= 1 and not rest[0]:
         vel = np.stack([motion.velocity(p) for p in mech.sketch], axis=1)
-        v_ref = float(np.max(np.linalg.norm(motion.velocity(ref_point), axis=1)))
+        v_ref = float(np.max(la.norm(motion.velocity(ref_point), axis=1)))
         v_ext = max(_span(v) for v in vel)
     if motion.order >= 2 and not rest[1]:
         acc = np.stack([motion.acceleration(p) for p in mech.sketch], axis=1)
-        a_ref = float(np.max(np.linalg.norm(motion.acceleration(ref_point), axis=1)))
+        a_ref = float(np.max(la.norm(motion.acceleration(ref_point), axis=1)))
         a_ext = max(_span(a) for a in acc)
     return choose_scales(extent=extent_of(pts), v_ref=v_ref, v_extent=v_ext, a_ref=a_ref, a_extent=a_ext,
                          overrides=scene.scales)

@@ -13,6 +13,7 @@ from ..drives import DrivenEquations
 from ..state import LinkState
 from ..walk import Walk, check_crossing, limit_reached
 from .base import Rates, Seed, States
+from ... import linalg as la
 
 __all__ = ["Driven", "LIMIT_HALVINGS", "LIMIT_MOVE", "LIMIT_CONDITION"]
 
@@ -93,7 +94,7 @@ class Driven:
                 return ""
             pins.append((link, own[0]))
         (ga, pa), (gb, pb) = pins
-        length = np.linalg.norm(states[ga].point(self.mech.links[ga].local[pa])[0]
+        length = la.norm(states[ga].point(self.mech.links[ga].local[pa])[0]
                                 - states[gb].point(self.mech.links[gb].local[pb])[0])
         return f"; the cylinder's length {pa}{pb} = {float(length):g} m"
 

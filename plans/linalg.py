@@ -1,0 +1,142 @@
+"""Small dense linear algebra that gives the same bits on every processor.
+
+numpy's ``@``, ``dot``, ``linalg.norm`` (of a vector), ``solve``, ``inv``, ``det`` and ``qr``
+call OpenBLAS/LAPACK, whose kernels are picked for the processor at load time (Haswell,
+SkylakeX, Zen, Neoverse …) and sum in different orders or with fused multiply-adds. Their
+results differ in the last bits from one processor to the next, and a drawing decision
+downstream of an ill-conditioned step (an instantaneous centre far away, a label's slot)
+can then flip. Everything in ``plans`` that feeds a value, a drawing or a report goes
+through this module instead: each function is a fixed sequence of numpy element-wise
+operations and reductions (IEEE 754 correctly rounded, in an order that does not depend on
+the processor), so the same input gives the same bits on any machine with the same numpy.
+
+The matrices here are small (a group's 2k × 2k Jacobian, k ≤ a few dozen; 3 × 3 transforms),
+stacked over many positions: Gaussian elimination with partial pivoting, vectorised over the
+stack, costs about what LAPACK's unblocked LU costs at these sizes. Accuracy is LAPACK's:
+the same algorithm (row pivoting by largest magnitude; Householder QR).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.linalg import LinAlgError
+
+__all__ = ["LinAlgError", "det", "dot", "inv", "matmul", "norm", "qr", "solve"]
+
+
+def dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Σ a_i·b_i over the last axis (broadcast over the others); a float for two vectors."""
+    out = np.add.reduce(np.multiply(a, b), axis=-1)
+    return float(out) if np.ndim(out) == 0 else out
+
+
+def norm(x: np.ndarray, axis: int | None = None, keepdims: bool = False) -> np.ndarray:
+    """Euclidean norm √Σx² over ``axis`` (all elements when None), like ``np.linalg.norm``
+    without its BLAS dot for vectors; a float when the result is a scalar."""
+    x = np.asarray(x, dtype=float)
+    out = np.sqrt(np.add.reduce(x * x, axis=axis, keepdims=keepdims))
+    return float(out) if np.ndim(out) == 0 else out
+
+
+def matmul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """a @ b (numpy's rules for 1-D and stacked operands) by numpy's own summation loops."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    if a.ndim == 1 and b.ndim == 1:
+        return dot(a, b)
+    if a.ndim == 1:
+        return np.einsum("j,...jk->...k", a, b)
+    if b.ndim == 1:
+        return np.einsum("...ij,j->...i", a, b)
+    return np.einsum("...ij,...jk->...ik", a, b)
+
+
+def _lu(m: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Gaussian elimination with partial pivoting of the first n columns of every matrix of
+    m (B, n, n + r), in place: m becomes U | L⁻¹P·rhs. Returns (m, the pivots (B, n), the
+    row-swap parity (B,) as ±1). A zero pivot (a singular matrix) leaves its column as it is."""
+    batch = np.arange(len(m))
+    sign = np.ones(len(m))
+    for j in range(n):
+        p = j + np.argmax(np.abs(m[:, j:, j]), axis=1)
+        swap = p != j
+        if swap.any():
+            rows = batch[swap]
+            top = m[rows, j].copy()
+            m[rows, j] = m[rows, p[swap]]
+            m[rows, p[swap]] = top
+            sign[swap] = -sign[swap]
+        if j + 1 < n:
+            piv = m[:, j, j]
+            safe = np.where(piv == 0.0, 1.0, piv)
+            factor = m[:, j + 1:, j] / safe[:, None]
+            m[:, j + 1:, j:] -= factor[:, :, None] * m[:, j, None, j:]
+    return m, np.diagonal(m[:, :, :n], axis1=1, axis2=2), sign
+
+
+def solve(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """x with a·x = b for every matrix of the stack a (..., n, n); b is (..., n, k), or (n,)
+    for one vector (numpy's rules). Raises :class:`LinAlgError` when a matrix is exactly
+    singular (a zero pivot), as LAPACK's gesv does."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    vector = b.ndim == 1
+    if vector:
+        b = b[:, None]
+    n = a.shape[-1]
+    stack = np.broadcast_shapes(a.shape[:-2], b.shape[:-2])
+    a = np.broadcast_to(a, stack + a.shape[-2:])
+    b = np.broadcast_to(b, stack + b.shape[-2:])
+    k = b.shape[-1]
+    m = np.concatenate([a, b], axis=-1).reshape(-1, n, n + k).copy()
+    m, pivots, _ = _lu(m, n)
+    if (pivots == 0.0).any():
+        raise LinAlgError("Singular matrix")
+    x = np.empty((len(m), n, k))
+    for j in range(n - 1, -1, -1):
+        rhs = m[:, j, n:]
+        if j + 1 < n:
+            rhs = rhs - np.add.reduce(m[:, j, j + 1:n, None] * x[:, j + 1:, :], axis=1)
+        x[:, j, :] = rhs / m[:, j, j, None]
+    x = x.reshape(stack + (n, k))
+    return x[..., 0] if vector else x
+
+
+def inv(a: np.ndarray) -> np.ndarray:
+    """The inverse of every matrix of the stack a (..., n, n); :class:`LinAlgError` when singular."""
+    a = np.asarray(a, dtype=float)
+    return solve(a, np.broadcast_to(np.eye(a.shape[-1]), a.shape))
+
+
+def det(a: np.ndarray) -> np.ndarray:
+    """The determinant of every matrix of the stack a (..., n, n): 2 × 2 by ad − bc, larger by
+    the pivots of the LU factors; a float for one matrix."""
+    a = np.asarray(a, dtype=float)
+    n = a.shape[-1]
+    if n == 2:
+        out = a[..., 0, 0] * a[..., 1, 1] - a[..., 0, 1] * a[..., 1, 0]
+    else:
+        m, pivots, sign = _lu(a.reshape(-1, n, n).copy(), n)
+        out = (sign * np.multiply.reduce(pivots, axis=1)).reshape(a.shape[:-2])
+    return float(out) if np.ndim(out) == 0 else out
+
+
+def qr(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Complete QR of every matrix of the stack a (..., m, n) by Householder reflections:
+    Q (..., m, m) orthogonal, R (..., m, n) upper triangular, a = Q·R (the shapes of
+    ``np.linalg.qr(a, mode="complete")``; the signs of R's diagonal may differ from LAPACK's).
+    Q's columns past the first n span the orthogonal complement of a's columns (a subspace of
+    it, when a's rank is below n)."""
+    a = np.asarray(a, dtype=float)
+    rows, cols = a.shape[-2:]
+    r = a.reshape(-1, rows, cols).copy()
+    q = np.broadcast_to(np.eye(rows), (len(r), rows, rows)).copy()
+    for j in range(min(rows - 1, cols)):
+        x = r[:, j:, j]
+        size = norm(x, axis=1)
+        v = x.copy()
+        v[:, 0] += np.where(x[:, 0] >= 0.0, size, -size)
+        length = norm(v, axis=1)
+        v /= np.where(length > 0.0, length, 1.0)[:, None]       # a zero column: no reflection
+        r[:, j:, :] -= 2.0 * v[:, :, None] * np.einsum("bi,bik->bk", v, r[:, j:, :])[:, None, :]
+        q[:, :, j:] -= 2.0 * np.einsum("bki,bi->bk", q[:, :, j:], v)[:, :, None] * v[:, None, :]
+        r[:, j + 1:, j] = 0.0                                      # reflected onto the axis exactly
+    return q.reshape(a.shape[:-2] + (rows, rows)), r.reshape(a.shape)
