@@ -53,7 +53,8 @@ def matmul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 def _lu(m: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Gaussian elimination with partial pivoting of the first n columns of every matrix of
     m (B, n, n + r), in place: m becomes U | L⁻¹P·rhs. Returns (m, the pivots (B, n), the
-    row-swap parity (B,) as ±1). A zero pivot (a singular matrix) leaves its column as it is."""
+    row-swap parity (B,) as ±1). A zero pivot (a singular matrix) leaves its column as it is.
+    The first largest |entry| is the pivot (as in :func:`_lu_one`)."""
     batch = np.arange(len(m))
     sign = np.ones(len(m))
     for j in range(n):
@@ -73,10 +74,51 @@ def _lu(m: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return m, np.diagonal(m[:, :, :n], axis1=1, axis2=2), sign
 
 
+def _lu_one(m: list[list[float]], n: int) -> float:
+    """:func:`_lu` of one matrix held as Python lists (the same operations in the same order, so
+    the same bits; numpy's per-call overhead would cost ten times the arithmetic at these
+    sizes). Returns the row-swap parity."""
+    sign = 1.0
+    for j in range(n):
+        p, big = j, abs(m[j][j])
+        for i in range(j + 1, n):
+            if abs(m[i][j]) > big:
+                p, big = i, abs(m[i][j])
+        if p != j:
+            m[j], m[p] = m[p], m[j]
+            sign = -sign
+        piv = m[j][j]
+        if piv == 0.0:
+            piv = 1.0
+        top = m[j]
+        for i in range(j + 1, n):
+            row = m[i]
+            factor = row[j] / piv
+            for c in range(j, len(row)):
+                row[c] -= factor * top[c]
+    return sign
+
+
+def _back_one(m: list[list[float]], n: int) -> list[list[float]]:
+    """x from the eliminated rows U | y of one matrix: x_j = (y_j − Σ_{i>j} U_ji·x_i) / U_jj,
+    the sum taken from i = j + 1 upwards."""
+    k = len(m[0]) - n
+    x: list[list[float]] = [[0.0] * k for _ in range(n)]
+    for j in range(n - 1, -1, -1):
+        row = m[j]
+        rhs = row[n:]
+        for i in range(j + 1, n):
+            u, xi = row[i], x[i]
+            rhs = [r - u * v for r, v in zip(rhs, xi)]
+        x[j] = [r / row[j] for r in rhs]
+    return x
+
+
 def solve(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """x with a·x = b for every matrix of the stack a (..., n, n); b is (..., n, k), or (n,)
     for one vector (numpy's rules). Raises :class:`LinAlgError` when a matrix is exactly
-    singular (a zero pivot), as LAPACK's gesv does."""
+    singular (a zero pivot), as LAPACK's gesv does. One matrix is solved on Python floats,
+    a stack by numpy over the stack: the same operations in the same order either way."""
     a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
     vector = b.ndim == 1
     if vector:
@@ -86,15 +128,22 @@ def solve(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     a = np.broadcast_to(a, stack + a.shape[-2:])
     b = np.broadcast_to(b, stack + b.shape[-2:])
     k = b.shape[-1]
-    m = np.concatenate([a, b], axis=-1).reshape(-1, n, n + k).copy()
-    m, pivots, _ = _lu(m, n)
+    m = np.concatenate([a, b], axis=-1).reshape(-1, n, n + k)
+    if len(m) == 1:
+        rows = m[0].tolist()
+        _lu_one(rows, n)
+        if any(rows[j][j] == 0.0 for j in range(n)):
+            raise LinAlgError("Singular matrix")
+        x = np.array(_back_one(rows, n), dtype=float).reshape(stack + (n, k))
+        return x[..., 0] if vector else x
+    m, pivots, _ = _lu(m.copy(), n)
     if (pivots == 0.0).any():
         raise LinAlgError("Singular matrix")
     x = np.empty((len(m), n, k))
     for j in range(n - 1, -1, -1):
         rhs = m[:, j, n:]
-        if j + 1 < n:
-            rhs = rhs - np.add.reduce(m[:, j, j + 1:n, None] * x[:, j + 1:, :], axis=1)
+        for i in range(j + 1, n):
+            rhs = rhs - m[:, j, i, None] * x[:, i, :]
         x[:, j, :] = rhs / m[:, j, j, None]
     x = x.reshape(stack + (n, k))
     return x[..., 0] if vector else x
@@ -113,9 +162,18 @@ def det(a: np.ndarray) -> np.ndarray:
     n = a.shape[-1]
     if n == 2:
         out = a[..., 0, 0] * a[..., 1, 1] - a[..., 0, 1] * a[..., 1, 0]
+    elif a.ndim == 2 or a.size == n * n:
+        rows = a.reshape(n, n).tolist()
+        out = _lu_one(rows, n)
+        for j in range(n):
+            out *= rows[j][j]
+        out = np.full(a.shape[:-2], out)
     else:
         m, pivots, sign = _lu(a.reshape(-1, n, n).copy(), n)
-        out = (sign * np.multiply.reduce(pivots, axis=1)).reshape(a.shape[:-2])
+        out = sign
+        for j in range(n):
+            out = out * pivots[:, j]
+        out = out.reshape(a.shape[:-2])
     return float(out) if np.ndim(out) == 0 else out
 
 

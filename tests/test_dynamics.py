@@ -28,8 +28,14 @@ from plans.scene.file import parse_toml
 DYNAMICS_EXAMPLES = ("six_link_press_flywheel", "compressor_flywheel", "shaper_flywheel")
 
 
+_REPORTS: dict[str, dict] = {}
+
+
 def _report(name: str) -> dict:
-    return render(EXAMPLES / f"{name}.toml").report
+    """The example's report, rendered once for this module (several tests read each)."""
+    if name not in _REPORTS:
+        _REPORTS[name] = render(EXAMPLES / f"{name}.toml").report
+    return _REPORTS[name]
 
 
 @pytest.mark.parametrize("name", DYNAMICS_EXAMPLES + ("six_link_press_startup",))

@@ -19,7 +19,7 @@ PACKAGE = Path(__file__).resolve().parent.parent / "plans"
 
 #: The layers, first to last: a module's layer is the first prefix its dotted name matches.
 LAYERS: tuple[tuple[str, ...], ...] = (
-    ("plans.errors", "plans.examples"),
+    ("plans.errors", "plans.examples", "plans.linalg", "plans.spatial"),
     ("plans.scene",),
     ("plans.model",),
     ("plans.structure",),
