@@ -18,13 +18,32 @@ def sheet_words(svg_text: str) -> str:
     return "\n".join("".join(t.itertext()) for t in root.iter("{http://www.w3.org/2000/svg}text"))
 
 
+def stem_of(name: str) -> str:
+    """The scene stem a rendered file belongs to: ``four_bar-velocity-30.svg`` → ``four_bar``."""
+    return name.split("-")[0].split(".")[0]
+
+
 @pytest.fixture(scope="session")
-def rendered(tmp_path_factory):
-    """Every example rendered once into a temporary folder."""
+def demo_rendered(tmp_path_factory):
+    """Every bundled example, linkages and gears, rendered once by ``plans demo`` (what the
+    README's first command puts into output/)."""
     from plans.cli import main
 
+    out = tmp_path_factory.mktemp("demo")
+    assert main(["demo", "-o", str(out), "-q"]) == 0
+    return out
+
+
+@pytest.fixture(scope="session")
+def rendered(demo_rendered, tmp_path_factory):
+    """Every linkage example's files (examples/*.toml, not the gears), from the one demo render."""
+    import shutil
+
     out = tmp_path_factory.mktemp("render")
-    assert main(["render", *map(str, EXAMPLES), "-o", str(out), "-q"]) == 0
+    stems = {p.stem for p in EXAMPLES}
+    for path in demo_rendered.iterdir():
+        if path.is_file() and stem_of(path.name) in stems:
+            shutil.copyfile(path, out / path.name)
     return out
 
 

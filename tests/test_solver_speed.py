@@ -112,6 +112,9 @@ def test_near_limit_values_agree(monkeypatch):
 
 @pytest.mark.parametrize("delta", [0.3, 1.0])
 def test_local_singular_distance_matches_full_search(delta):
+    """The local search finds the fold δ away (to 1e-3: the fold itself is Moore–Spence's, the
+    distance a secant's); at δ = 0.3 the previous full search (33 whole analyses, the suite's
+    costliest second opinion, run once) agrees to 1e-9."""
     from plans.kinematics.singular import distance
     mech, st = _load(_folding_triad())
     ref = Reference(mech)
@@ -119,7 +122,8 @@ def test_local_singular_distance_matches_full_search(delta):
     motion = analyse(mech, st, np.array([fold - delta]))
     d = distance(motion, "III(2-3-4-5)", 0)
     assert d == pytest.approx(delta, rel=1e-3)
-    assert d == pytest.approx(_full_search(motion, "III(2-3-4-5)", 0), rel=1e-9)
+    if delta == 0.3:
+        assert d == pytest.approx(_full_search(motion, "III(2-3-4-5)", 0), rel=1e-9)
 
 
 @pytest.mark.parametrize("delta", [0.05, 0.3])
@@ -139,7 +143,9 @@ def test_local_singular_distance_class_ii(delta):
     (g,) = motion.sines
     new, old = distance(motion, g, 0), _full_search(motion, g, 0)
     assert new == pytest.approx(delta, rel=1e-6)        # the bisected limit position
-    assert new == pytest.approx(old, rel=1e-4)          # the full search is a little less exact here
+    # the full search's secant halves its steps back from past the limit and stops after 16 steps,
+    # a few 1e-6° short (1.5e-6° at δ = 0.05°, as in test_kinds): not derived, rel=1e-4 is 3× that
+    assert new == pytest.approx(old, rel=1e-4)
 
 
 def _full_search(motion: Motion, group: str, i: int) -> float | None:
