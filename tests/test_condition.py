@@ -164,7 +164,7 @@ def test_class4_six_link_warns_only_near_a_dead_position():
 
     scene, mech, st = _load(_long_crank_class4())
     dead = 95.0 + analyse(mech, st, np.array([95.0]), order=1).singular_distance("IV(2-3-4-5)", 0)
-    assert dead == pytest.approx(96.331, abs=1e-3)
+    assert dead == pytest.approx(96.331, abs=1e-3)       # the 3 decimals quoted: ±5e-4 of rounding, ×2
     motion = analyse(mech, st, dead - np.array([1.0, 0.01, 0.002]), order=1)
     warned = _warned(scene, motion)
     assert len(warned) == 1 and f"at {dead - 0.002:g}°" in warned[0] and "about 0.002° from it" in warned[0]
@@ -181,7 +181,7 @@ def test_hydraulic_boom_warns_only_near_its_dead_position():
     a, b, o = (np.asarray(scene.points[p]) for p in "ABO")
     sketch_length = float(np.linalg.norm(b - a))
     dead = (np.linalg.norm(b - o) - np.linalg.norm(a - o)) - sketch_length          # the stroke where AB = OB − OA
-    assert dead == pytest.approx(-0.185553, abs=1e-6)
+    assert dead == pytest.approx(-0.185553, abs=1e-6)    # the 6 decimals quoted: ±5e-7 of rounding, ×2
     warned = [_warned(scene, analyse(mech, st, np.array([dead + d]), order=1)) for d in (1e-3, 1e-4, 1e-5)]
     assert warned[:2] == [[], []]
     assert len(warned[2]) == 1 and "I(0-2-3-4)" in warned[2][0] and "about 1e-05 m from it" in warned[2][0]

@@ -107,6 +107,7 @@ def test_random_variants_within_ranges_margin_and_equal_direct_render(random3):
     for k, v in enumerate(data["variant"], 1):
         for name, x in v["lengths"].items():
             b = base["lengths"][name]
+            # drawn within the spread, then rounded to 3 significant digits: ±0.5 % at most (exact)
             assert (1 - LENGTH_SPREAD) * b * 0.995 <= x <= (1 + LENGTH_SPREAD) * b * 1.005
             assert float(f"{x:.3g}") == x
         assert 0.0 <= v["angle"] < 360.0 and v["angle"] % 5.0 == 0.0

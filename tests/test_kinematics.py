@@ -42,7 +42,13 @@ TOL_NEAR = 1e-9
 #: the same where two branches cross (sin ∝ distance, not √distance): accelerations there are
 #: conditioned like eps/sin³, and a 50-digit closed form shows double precision cannot do better
 TOL_NEAR_CROSSING = 1e-7
-#: plans against finite differences of its positions: velocities, accelerations
+#: plans against finite differences of its positions: velocities, accelerations. The 6th-order
+#: differences err by truncation, h⁶/140·|r⁽⁷⁾| and h⁶/560·|r⁽⁸⁾|, plus the positions' rounding δ
+#: amplified by Σ|FD1|/h = 1.83/h and Σ|FD2|/h² = 6.04/h². The two worst cases: the tangent
+#: mechanism 5° from its pole (s ∝ tan φ, r⁽ᵏ⁾ ~ k!/δᵏ⁺¹ against v ~ 1/δ²: 7!/140·(h/δ)⁶ =
+#: 36·(0.05°/5°)⁶ = 3.6e-11 of v, measured 3.6e-11) and the hydraulic boom's accelerations
+#: (h = 0.3 mm, positions up to 2 m: 6.04·eps·|r|/h² = 5e-10 of max|a| for each eps·|r| of δ;
+#: measured 2.3e-9). The tolerances allow δ ≤ 16 eps·|r| (8e-9) and ~3× that truncation.
 TOL_FD_V = 1e-10
 TOL_FD_A = 1e-8
 #: textbook closed forms

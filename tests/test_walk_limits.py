@@ -133,6 +133,8 @@ def test_a_cylinder_driven_beyond_its_limit_gives_the_limit_stroke_and_length():
     shortest = np.linalg.norm(pts["B"] - pts["O"]) - np.linalg.norm(pts["A"] - pts["O"])
     stroke = math.sqrt(shortest ** 2 - off ** 2) - float(np.dot(ab, axis))
     assert "limit position" in text and "falls apart" not in text and "at -0.4 m" in text
+    # the message prints :g, 6 significant digits (≤ 5e-6 relative); the limit itself is found to
+    # 1e-6 of the search's first step (1e-10 of the size), far closer: rel=1e-5 is twice the printing
     assert _number(r"limit position at (-?[\d.e+-]+) m", text) == pytest.approx(stroke, rel=1e-5)
     assert _number(r"length AB = ([\d.e+-]+) m", text) == pytest.approx(shortest, rel=1e-5)
 
@@ -162,6 +164,7 @@ def test_a_coupler_driven_beyond_its_limit_gives_the_limit_angle(angle, extreme)
     text = _error(data, [53.0, angle])
     assert "limit position" in text and "falls apart" not in text and f"at {angle:g}°" in text
     limit = _number(r"limit position at (-?[\d.e+-]+)° \(link 2's angle\)", text)
+    # printed :g (≤ 5e-6 relative); the sampled extreme is within ½·|ψ″|·(π/2·10⁶)² ~ 1e-12: rel=1e-5
     assert limit == pytest.approx(float(extreme(_coupler_angles(data))), rel=1e-5)
 
 

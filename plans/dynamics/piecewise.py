@@ -18,6 +18,8 @@ __all__ = ["NODES", "Piecewise", "nodes_of", "fit"]
 #: Gauss–Legendre nodes per panel (degree 7 polynomials; a panel's quadrature is exact to degree 15).
 NODES = 8
 _T, _W = legendre.leggauss(NODES)
+#: How far (in half panel widths) an extended Piecewise continues its end panels' polynomials.
+REACH = 1e3
 _V_INV = la.inv(legendre.legvander(_T, NODES - 1))
 
 
@@ -34,15 +36,28 @@ class Piecewise:
 
     edges: np.ndarray
     coef: np.ndarray
+    #: beyond the first and last edges: the end panel's polynomial continued (True; up to
+    #: :data:`REACH` panel widths, far past where it means anything: finite values for an
+    #: integrator's trial step there to reject) or the value at the edge (False)
+    extend: bool = False
 
     def __call__(self, theta: np.ndarray | float) -> np.ndarray:
         shape = np.shape(theta)
         theta = np.atleast_1d(np.asarray(theta, dtype=float)).ravel()
         k = np.clip(np.searchsorted(self.edges, theta, side="right") - 1, 0, len(self.edges) - 2)
         a, b = self.edges[k], self.edges[k + 1]
-        t = np.clip((2.0 * theta - a - b) / (b - a), -1.0, 1.0)
+        t = (2.0 * theta - a - b) / (b - a)
+        t = np.clip(t, -REACH, REACH) if self.extend else np.clip(t, -1.0, 1.0)
         v = legendre.legvander(t, self.coef.shape[1] - 1)
         return np.einsum("ij,ij->i", v, self.coef[k]).reshape(shape)
+
+    def between(self, lo: float, hi: float) -> Piecewise:
+        """The panels from the edge nearest ``lo`` to the edge nearest ``hi``, the end panels'
+        polynomials continued beyond them: smooth across ``lo`` and ``hi`` (an integrator that
+        stops at a kink of a load must not see the kink in the step that overshoots it)."""
+        k0 = int(np.argmin(np.abs(self.edges - lo)))
+        k1 = int(np.argmin(np.abs(self.edges - hi)))
+        return Piecewise(self.edges[k0:k1 + 1], self.coef[k0:k1], extend=True)
 
     def integral(self, at_start: float = 0.0) -> Piecewise:
         """The antiderivative, ``at_start`` at the first edge, continuous across the edges."""

@@ -4,7 +4,9 @@
 
 (moments in the crank's sense of rotation, M_r the loads' reduced moment: negative where they
 resist) integrated by SciPy's ``solve_ivp`` (DOP853, an explicit Runge–Kutta of order 8 with
-error control, its sums in fixed order: :mod:`.dop853`; ``rtol``/``atol`` are its tolerances) until ``t_end``. The loads are those of the
+error control, its sums in fixed order: :mod:`.dop853`; ``rtol``/``atol`` are its tolerances) until ``t_end``,
+stopped and restarted at every kink of the loads (the steady cycle's ``breaks``), so that no
+step has one inside and the error control holds on every step. The loads are those of the
 steady cycle (:mod:`.machine`): a force that opposes its point's velocity, or acts on a stroke,
 takes the sense it has with the crank turning forward.
 
@@ -75,44 +77,109 @@ class Startup:
     solution: object
 
 
-def _equation(machine: MachineDynamics, motor: Motor):
-    j = machine.J
+def _pieces(machine: MachineDynamics) -> np.ndarray:
+    """The edges (in [0, 2π]) between which the loads are smooth: 0, the kinks, 2π."""
     two_pi = 2.0 * math.pi
+    edges = np.unique(np.concatenate([[0.0], np.mod(machine.breaks, two_pi), [two_pi]]))
+    return edges[np.concatenate([np.diff(edges) > 1e-12, [True]])]
+
+
+def _equation(machine: MachineDynamics, motor: Motor, lo: float, hi: float, base: float):
+    """The right side for θ − ``base`` in [``lo``, ``hi``] (one smooth piece of a revolution),
+    its loads continued smoothly beyond both ends."""
+    j = machine.J
+    moment, slope, inertia = (f.between(lo, hi) for f in (machine.moment, machine.slope, machine.inertia))
 
     def rhs(t: float, y: np.ndarray) -> np.ndarray:
-        th = y[0] % two_pi
+        th = y[0] - base
         w = y[1]
-        num = float(motor_moment(motor, w)) + float(machine.moment(th)) - 0.5 * float(machine.slope(th)) * w * w
-        return np.array([w, num / (float(machine.inertia(th)) + j)])
+        num = float(motor_moment(motor, w)) + float(moment(th)) - 0.5 * float(slope(th)) * w * w
+        return np.array([w, num / (float(inertia(th)) + j)])
     return rhs
 
 
-def startup(machine: MachineDynamics, motor: Motor, t_end: float, *, rtol: float = RTOL,
-            atol: float = ATOL) -> Startup:
-    """The start-up from rest at position 0 to ``t_end`` s (see the module)."""
-    from scipy.integrate import solve_ivp       # imported only when a start-up is simulated
-    rhs = _equation(machine, motor)
-    m0, l0 = float(motor_moment(motor, 0.0)), float(machine.moment(0.0))
-    if m0 + l0 <= 0.0:
-        raise PlansError(f"the motor cannot start the load: its starting moment at the crank is {m0:.4g} N·m and the "
-                         f"loads resist with {-l0:.4g} N·m at the first position (φ = {machine.start % 360:.6g}°); "
-                         "give a stronger motor or a larger ratio")
+@dataclass(frozen=True, eq=False)
+class Solution:
+    """The start-up's dense solution over all its pieces: ``sol(t)`` → (θ, ω) (a SciPy
+    ``OdeSolution``), ``t`` the integrator's step ends, ``nfev`` its evaluations."""
+
+    sol: object
+    t: np.ndarray
+    nfev: int
+
+
+def _integrate(machine: MachineDynamics, motor: Motor, t_end: float, rtol: float, atol: float) -> Solution:
+    """DOP853 from rest, stopped at every kink of the loads (θ at a break of a revolution) and
+    restarted from there: no step has a kink inside, so the error control holds on every step
+    (a step over a kink errs by ~0.08·ΔM′·(ω·h)², far beyond rtol, while the error estimate
+    sees little of it). Raises PlansError when the crank stalls."""
+    from scipy.integrate import OdeSolution, solve_ivp       # imported only when a start-up is simulated
+    two_pi = 2.0 * math.pi
+    edges = _pieces(machine)
 
     def stalls(t: float, y: np.ndarray) -> float:
         return y[1] if t > 0.0 else 1.0
     stalls.terminal, stalls.direction = True, -1
 
-    sol = solve_ivp(rhs, (0.0, t_end), np.array([0.0, 0.0]), method=DOP853, rtol=rtol, atol=atol,
-                    dense_output=True, events=stalls)
-    if sol.status == 1 and len(sol.t_events[0]):
-        ts = float(sol.t_events[0][0])
-        th = float(sol.y_events[0][0][0])
-        raise PlansError(f"the motor cannot start the load: the crank stops at t = {ts:.4g} s, "
-                         f"φ = {(machine.start + machine.sense * math.degrees(th)) % 360:.6g}° (the loads' reduced "
-                         f"moment there is {float(machine.moment(th % (2 * math.pi))):.4g} N·m); give a stronger motor, "
-                         "a larger ratio or a larger flywheel")
-    if not sol.success:
-        raise PlansError(f"the start-up could not be integrated: {sol.message}")
+    t0, y0, k, turn, first = 0.0, np.array([0.0, 0.0]), 0, 0, None
+    ts, parts, nfev = [np.array([0.0])], [], 0
+    while True:
+        base, target = turn * two_pi, turn * two_pi + edges[k + 1]
+
+        def reaches(t: float, y: np.ndarray, target=target) -> float:
+            return y[0] - target
+        reaches.terminal, reaches.direction = True, 1
+
+        rhs = _equation(machine, motor, edges[k], edges[k + 1], base)
+        sol = solve_ivp(rhs, (t0, t_end), y0, method=DOP853, rtol=rtol, atol=atol, dense_output=True,
+                        events=(stalls, reaches), first_step=first)
+        nfev += sol.nfev
+        if not sol.success:
+            raise PlansError(f"the start-up could not be integrated: {sol.message}")
+        ts.append(sol.sol.ts[1:])
+        parts += sol.sol.interpolants
+        if sol.status == 1 and len(sol.t_events[0]):
+            ts_ = float(sol.t_events[0][0])
+            th = float(sol.y_events[0][0][0])
+            raise PlansError(f"the motor cannot start the load: the crank stops at t = {ts_:.4g} s, "
+                             f"φ = {(machine.start + machine.sense * math.degrees(th)) % 360:.6g}° (the loads' "
+                             f"reduced moment there is {float(machine.moment(th % two_pi)):.4g} N·m); give a "
+                             "stronger motor, a larger ratio or a larger flywheel")
+        if sol.status != 1:
+            break
+        # the state at the kink by a step of the method that ends there (error-controlled),
+        # not by the dense output of the step that overshot it (order 7, not controlled)
+        over = parts.pop()
+        t_n, t0 = over.t_min, float(sol.t_events[1][0])
+        ts[-1] = ts[-1][:-1]
+        if t0 > t_n:
+            sol = solve_ivp(rhs, (t_n, t0), over(t_n), method=DOP853, rtol=rtol, atol=atol, dense_output=True,
+                            first_step=t0 - t_n)
+            nfev += sol.nfev
+            ts.append(sol.sol.ts[1:])
+            parts += sol.sol.interpolants
+            y0 = sol.y[:, -1]
+        else:
+            y0 = over(t_n)
+        first = min(over.t_max - over.t_min, t_end - t0) or None
+        if t0 >= t_end:
+            break
+        k += 1
+        if k == len(edges) - 1:
+            k, turn = 0, turn + 1
+    t = np.concatenate(ts)
+    return Solution(sol=OdeSolution(t, parts), t=t, nfev=nfev)
+
+
+def startup(machine: MachineDynamics, motor: Motor, t_end: float, *, rtol: float = RTOL,
+            atol: float = ATOL) -> Startup:
+    """The start-up from rest at position 0 to ``t_end`` s (see the module)."""
+    m0, l0 = float(motor_moment(motor, 0.0)), float(machine.moment(0.0))
+    if m0 + l0 <= 0.0:
+        raise PlansError(f"the motor cannot start the load: its starting moment at the crank is {m0:.4g} N·m and the "
+                         f"loads resist with {-l0:.4g} N·m at the first position (φ = {machine.start % 360:.6g}°); "
+                         "give a stronger motor or a larger ratio")
+    sol = _integrate(machine, motor, t_end, rtol, atol)
     t = np.linspace(0.0, t_end, SAMPLES)
     y = sol.sol(t)
     th, w = y[0], y[1]
