@@ -323,9 +323,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     sy.add_argument("--module", default="1", metavar="M", help="module of every wheel, mm (default 1)")
     sy.add_argument("-o", "--output", default="output", metavar="DIR")
     sy.add_argument("-q", "--quiet", action="store_true")
-    b = sub.add_parser("bench", help="measure what accuracy costs in time: tables, charts and bench.json")
+    b = sub.add_parser("bench", help="measure what accuracy costs in time: tables, charts and bench.json "
+                       "(under two minutes on two cores)")
     b.add_argument("-o", "--output", default="output/bench", metavar="DIR")
-    b.add_argument("--quick", action="store_true", help="a few small cases only (seconds; for tests)")
+    size = b.add_mutually_exclusive_group()
+    size.add_argument("--full", action="store_true", help="every example, tolerance and repeat (several minutes; "
+                      "the estimate is printed first)")
+    size.add_argument("--quick", action="store_true", help="a few small cases only (seconds; for tests)")
     args = parser.parse_args(argv)
     try:
         if args.command in ("render", "demo"):
@@ -342,7 +346,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             from .bench import run   # imported here: the other commands need none of it
 
             check_folder(args.output)   # a bad -o is told before the minutes of measuring
-            run(args.output, quick=args.quick)
+            run(args.output, quick=args.quick, full=args.full)
             return 0
         return _check(args.svgs)
     except PlansError as exc:

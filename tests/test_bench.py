@@ -1,5 +1,6 @@
 """``plans bench --quick``: the tables, charts and bench.json are produced and every figure is
-sane. No time is asserted, only that times are positive and finite: how fast a machine is
+sane; the default run and ``--full`` measure what they promise (checked on their configurations,
+not run). No time is asserted, only that times are positive and finite: how fast a machine is
 belongs in the bench's report, not in a test."""
 
 from __future__ import annotations
@@ -13,16 +14,20 @@ import xml.etree.ElementTree as ET
 
 import pytest
 
-from plans.bench import QUICK, format_table
+import plans.bench as bench_module
+from plans.bench import DEFAULT, FULL, QUICK, format_table
 from plans.bench.chart import Chart, Series, draw_chart, ticks
-from plans.bench.sections import (AGREEMENT_TARGET, CLASS_COST_TARGET, NUMBA_TARGET, Column, numba_comparison,
-                                  peer_comparison)
+from plans.bench.fan import fan_links
+from plans.bench.sections import (AGREEMENT_TARGET, CLASS_COST_TARGET, FAN_FLAT_TARGET, NUMBA_TARGET, SECTIONS,
+                                  Column, numba_comparison, peer_comparison)
+from plans.bench.sections.common import all_examples
 from plans.cli import main
 
 SVG = "{http://www.w3.org/2000/svg}"
 TITLES = ("1. Drawing precision", "2. Solver tolerance", "3. Cycle resolution", "4. Throughput",
           "4b. Plans rendered per second", "5. Peer comparison", "6. Crank-slider full kinematics",
-          "7. Class III / IV cost per position", "8. A crank that cannot turn fully")
+          "7. Class III / IV cost per position", "8. A crank that cannot turn fully", "9. A class set",
+          "10. plans check on hostile files", "11. Start-up", "12. Render time per link")
 
 
 def _strict(text: str) -> dict:
@@ -272,3 +277,53 @@ def test_format_table_aligns_columns():
     lines = text.splitlines()
     assert lines[0].startswith("name") and "—" in lines[3]
     assert len({len(line) for line in lines[:2]}) == 1
+
+
+def test_fan_render_reports_time_per_link(bench):
+    _, report, _ = bench
+    sec = report["sections"]["fan_render"]
+    assert "fan-render.svg" in report["charts"]
+    r = sec["rows"]
+    assert [x["dyads"] for x in r] == list(QUICK.fan_dyads)
+    low = min(x["seconds"] / x["links"] for x in r)
+    for k, x in enumerate(r):
+        assert x["links"] == fan_links(x["dyads"]) == 2 * x["dyads"] + 2 and x["sheets"] >= 3
+        assert _positive(x["seconds"]) and _positive(x["wall_s"])
+        assert math.isclose(x["s_per_link"], x["seconds"] / x["links"], rel_tol=1e-9)
+        assert math.isclose(x["per_link_over_min"], x["seconds"] / x["links"] / low, rel_tol=1e-9)
+        if k:
+            assert math.isclose(x["time_ratio"], x["seconds"] / r[k - 1]["seconds"], rel_tol=1e-9)
+    assert math.isclose(sec["summary"]["max_over_min"], max(x["per_link_over_min"] for x in r), rel_tol=1e-9)
+    assert sec["summary"]["target"] == FAN_FLAT_TARGET
+    assert any(h.startswith("render time per link") for h in report["headlines"])
+
+
+def test_default_run_measures_every_section_and_the_issue_sizes():
+    """The default run keeps what makes each figure mean something; --full measures more."""
+    assert DEFAULT.name == "default" and FULL.name == "full" and QUICK.name == "quick"
+    assert DEFAULT.fan_dyads == FULL.fan_dyads == (10, 20, 40, 80, 160)
+    assert set(DEFAULT.precision_scenes) <= set(all_examples()) and not FULL.precision_scenes
+    assert DEFAULT.decimals == FULL.decimals and set(DEFAULT.tolerances) <= set(FULL.tolerances)
+    assert len(DEFAULT.resolutions) >= 3 and DEFAULT.numba_positions == FULL.numba_positions
+    assert DEFAULT.check_sizes[1] == 10 * DEFAULT.check_sizes[0]
+    assert DEFAULT.startup_reference_rtol < min(DEFAULT.startup_tolerances)
+    assert 0 < DEFAULT.reference_s <= 120 < FULL.reference_s
+
+
+def test_full_run_says_how_long_it_will_take_before_it_starts(monkeypatch, tmp_path):
+    monkeypatch.setattr(bench_module, "SECTIONS", ())
+    monkeypatch.setattr(bench_module, "_calibrate", lambda: 2 * bench_module.CALIBRATION_REFERENCE_S)
+    buf = io.StringIO()
+    report = bench_module.run(tmp_path, full=True, out=buf)
+    first = buf.getvalue().splitlines()[1]
+    assert first.startswith("this run will take about ") and "× 2.00" in first
+    assert report["config"] == "full" and math.isclose(report["estimated_s"], 2 * FULL.reference_s)
+    buf = io.StringIO()
+    assert bench_module.run(tmp_path, out=buf)["config"] == "default" and "will take" not in buf.getvalue()
+
+
+def test_full_and_quick_exclude_each_other(capsys):
+    with pytest.raises(SystemExit):
+        main(["bench", "--full", "--quick"])
+    assert "not allowed with" in capsys.readouterr().err
+    assert len(SECTIONS) == 13

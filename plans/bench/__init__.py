@@ -5,9 +5,14 @@ resolution, throughput (vectorised vs per-angle loop, plans rendered per second)
 comparison with the peer library pylinkage (skipped when it is not installed), the
 crank-slider's full kinematics against pylinkage's numba and pure-Python paths, the cost
 per position of class III/IV groups against the crank-slider, and a crank that cannot turn
-fully asked for angles on both sides of its sketch. Each section
-prints a table; :func:`run` also writes ``bench.json`` (every figure, the machine, the run
-time) and one SVG chart per figure into the output folder.
+fully asked for angles on both sides of its sketch, a class set, ``plans check`` on hostile
+files, the start-up's integrator tolerance and render time per link of growing fans. Each
+section prints a table; :func:`run` also writes ``bench.json`` (every figure, the machine, the
+run time) and one SVG chart per figure into the output folder.
+
+:data:`DEFAULT` (``plans bench``) measures every section at sizes that finish in under two
+minutes on two cores; :data:`FULL` (``--full``) every example, tolerance and repeat, and says
+first how long it will take (:func:`estimate`); :data:`QUICK` (``--quick``) is for the tests.
 """
 
 from __future__ import annotations
@@ -24,10 +29,16 @@ from typing import Any, TextIO
 import numpy as np
 
 from .chart import Chart, Series, draw_chart
-from .sections import (AGREEMENT_TARGET, CLASS_COST_TARGET, FULL, NUMBA_TARGET, QUICK, SECTIONS,
-                       THROUGHPUT_TARGET, Column, Config, Section)
+from .sections import (AGREEMENT_TARGET, CLASS_COST_TARGET, DEFAULT, FAN_FLAT_TARGET, FULL, NUMBA_TARGET, QUICK,
+                       SECTIONS, THROUGHPUT_TARGET, Column, Config, Section)
+from .sections.common import example_path
+from .timing import once
 
-__all__ = ["run", "machine", "format_table", "Chart", "Series", "Column", "Config", "Section", "FULL", "QUICK"]
+__all__ = ["run", "machine", "estimate", "format_table", "Chart", "Series", "Column", "Config", "Section", "DEFAULT",
+           "FULL", "QUICK"]
+
+#: Seconds of :func:`_calibrate` on the reference machine of Config.reference_s.
+CALIBRATION_REFERENCE_S = 0.4
 
 
 def machine() -> dict[str, Any]:
@@ -49,6 +60,29 @@ def _load_average() -> float | None:
         return round(os.getloadavg()[0], 2)
     except (AttributeError, OSError):
         return None
+
+
+def _calibrate() -> float:
+    """Seconds of a fixed piece of work (the six-link press rendered, best of 3 after a warm-up
+    render): how fast this machine runs ``plans`` now, load included."""
+    from ..pipeline import render_scene   # the bench's own sections import it anyway
+
+    path = example_path("six_link_press")
+    render_scene(path)
+    return min(once(lambda: render_scene(path))[0] for _ in range(3))
+
+
+def estimate(cfg: Config) -> tuple[float, float] | None:
+    """(estimated seconds of a run of ``cfg`` here and now, speed factor against the reference
+    machine), or None when ``cfg`` has no reference time."""
+    if cfg.reference_s is None:
+        return None
+    factor = _calibrate() / CALIBRATION_REFERENCE_S
+    return cfg.reference_s * factor, factor
+
+
+def _minutes(seconds: float) -> str:
+    return f"{seconds:.0f} s" if seconds < 100 else f"{seconds / 60:.1f} min"
 
 
 def _cell(value: Any, fmt: str) -> str:
@@ -131,19 +165,34 @@ def _headlines(sections: dict[str, Section]) -> list[str]:
             lines.append(f"a crank that cannot turn fully ({r[0]}), {r[1]} angles on both sides of its sketch: "
                          f"{r[3]:,.0f} positions/s in one call, {r[6]:.1f}× walking each angle alone "
                          f"(difference {r[7]:.0e})")
+    f = sections.get("fan_render")
+    if f and not f.skipped and f.rows:
+        per = [r[5] for r in f.rows]
+        lines.append(f"render time per link, fans of {f.rows[0][0]} … {f.rows[-1][0]} dyads ({f.rows[0][1]} … "
+                     f"{f.rows[-1][1]} links): {min(per):.4f} … {max(per):.4f} CPU s per link, max/min "
+                     f"{f.summary['max_over_min']:.2f} (target ≤ {FAN_FLAT_TARGET:g}×: {f.summary['verdict']})")
     return lines
 
 
-def run(out_dir: str | Path = "output/bench", *, quick: bool = False, out: TextIO | None = None,
-        config: Config | None = None) -> dict[str, Any]:
-    """Measure every section, print the tables to ``out`` (standard output by default), write
-    ``bench.json`` and the charts into ``out_dir``; return the JSON report."""
-    cfg = config or (QUICK if quick else FULL)
+def run(out_dir: str | Path = "output/bench", *, quick: bool = False, full: bool = False,
+        out: TextIO | None = None, config: Config | None = None) -> dict[str, Any]:
+    """Measure every section of ``config`` (else :data:`QUICK` with ``quick``, :data:`FULL` with
+    ``full``, :data:`DEFAULT`), print the tables to ``out`` (standard output by default), write
+    ``bench.json`` and the charts into ``out_dir``; return the JSON report. A run of FULL first
+    prints how long it will take."""
+    cfg = config or (QUICK if quick else FULL if full else DEFAULT)
     out = out or sys.stdout
     start = time.perf_counter()
     info = machine()
     print(f"plans bench ({cfg.name}): {info['cores']} cores, {info['cpu']}, Python {info['python']}, "
           f"NumPy {info['numpy']}, load average {info['load_average']}", file=out)
+    expected = estimate(cfg) if cfg is FULL else None
+    if expected:
+        seconds, factor = expected
+        print(f"this run will take about {_minutes(seconds)} ({_minutes(seconds / factor)} on the reference "
+              f"machine, 2 cores, × {factor:.2f} for this machine's speed now); `plans bench` without --full "
+              f"takes about {_minutes(factor * (DEFAULT.reference_s or 0.0))}", file=out)
+    out.flush()
     sections: dict[str, Section] = {}
     timings: dict[str, float] = {}
     for fn in SECTIONS:
@@ -162,6 +211,8 @@ def run(out_dir: str | Path = "output/bench", *, quick: bool = False, out: TextI
     headlines = _headlines(sections)
     report = {
         "config": cfg.name,
+        "estimated_s": expected[0] if expected else None,
+        "speed_factor": expected[1] if expected else None,
         "machine": info,
         "runtime_s": elapsed,
         "load_average_end": _load_average(),

@@ -26,6 +26,8 @@ import numpy as np
 import shapely
 
 from .plan_values import ConstructionLine, Plan, PlanPoint
+from .. import linalg as la
+from ..spatial import PointGrid, PointRaster, pieces, samples
 
 __all__ = ["PoleRegion", "PlanDetail", "pole_crowd", "enlargeable", "pole_detail", "NEAR_MM", "DETAIL_MM",
            "DETAIL_MIN_MM", "FACTORS", "CLEAR_MM"]
@@ -53,6 +55,15 @@ CLEAR_MM = 8.0
 CAPTION_GAP_MM = 1.5
 #: Step of the grid of places tried for the detail, mm.
 STEP_MM = 2.5
+#: Places tried at once (in order of preference) for the detail's spot.
+_CHUNK = 256
+#: Longest piece of a segment in the index of the ink, mm.
+_PIECE_MM = 10.0
+#: Spacing of the ink's sample points, mm; cell of their raster, mm; and how far a box is
+#: grown to be taken at once when it holds one (5 · √2 = 7.07 mm < CLEAR_MM · cos(π/16) = 7.85 mm).
+_SAMPLE_MM = 2.0
+_CELL_MM = 1.25
+_SURE_MM = 5.0
 
 
 @dataclass(frozen=True)
@@ -100,9 +111,11 @@ def pole_crowd(plan: Plan, near: float = NEAR_MM) -> tuple[tuple[str, ...], floa
     dist = {p.label: math.dist(p.xy, pole) for p in plan.points}
     crowd = [p for p in plan.points if AT_POLE_MM < dist[p.label] < near]
     places: list[tuple[float, float]] = []
+    near_places = PointGrid(AT_POLE_MM)
     for p in crowd:
-        if not any(math.dist(p.xy, q) < AT_POLE_MM for q in places):
+        if not any(math.dist(p.xy, places[k]) < AT_POLE_MM for k in near_places.near(p.xy)):
             places.append(p.xy)
+            near_places.add(p.xy)
     if len(places) < 2 or max(dist.values()) < 4.0 * near:
         return None
     return tuple(p.label for p in crowd), max(dist[p.label] for p in crowd)
@@ -165,7 +178,7 @@ def _place(plan: Plan, k: int, radius: float, *, sizes, room: float, caption,
     pole = np.array(plan.point(plan.pole), dtype=float)
     inner = np.array([p.xy for p in plan.points if math.dist(p.xy, pole) <= _reach(radius)], dtype=float)
     middle = (inner.min(axis=0) + inner.max(axis=0)) / 2.0
-    spread = float(np.max(np.linalg.norm(inner - middle, axis=1)))
+    spread = float(np.max(la.norm(inner - middle, axis=1)))
     frame = max((1.0 + FRAME_GROW) * k * spread, k * spread + reach)
     region = max(frame / k, REGION_MIN_MM)
     cw, ch = caption
@@ -173,18 +186,13 @@ def _place(plan: Plan, k: int, radius: float, *, sizes, room: float, caption,
     fx0, fy0 = -frame, -frame
     fx1 = max(frame, -frame + cw)
     fy1 = frame + CAPTION_GAP_MM + ch
-    ink = shapely.union_all([shapely.LineString([v.tail, v.head]) for v in plan.vectors if v.length > 0]
-                            + [shapely.LineString([l.start, l.end]) for l in plan.lines]
-                            + [shapely.Point(p.xy) for p in plan.points]
-                            + [shapely.Point(middle).buffer(region, quad_segs=8)])
-    obstacles = ink.buffer(CLEAR_MM, quad_segs=4)
-    shapely.prepare(obstacles)
-    gx0, gy0, gx1, gy1 = shapely.bounds(ink)
+    ink = _Ink.of(plan, middle, region)
+    gx0, gy0, gx1, gy1 = ink.bounds
     xs = np.arange(math.floor((gx0 - fx1 - CLEAR_MM) / STEP_MM), math.ceil((gx1 - fx0 + CLEAR_MM) / STEP_MM) + 1)
     ys = np.arange(math.floor((gy0 - fy1 - CLEAR_MM) / STEP_MM), math.ceil((gy1 - fy0 + CLEAR_MM) / STEP_MM) + 1)
     cx, cy = np.meshgrid(xs * STEP_MM, ys * STEP_MM, indexing="xy")
     cx, cy = cx.ravel(), cy.ravel()
-    free = ~shapely.intersects(shapely.box(cx + fx0, cy + fy0, cx + fx1, cy + fy1), obstacles)
+    detail_box = (fx0, fy0, fx1, fy1)
     fx0, fy0, fx1, fy1 = fx0 - room, fy0 - room, fx1 + room, fy1 + room
     bx0 = np.minimum(gx0 - room, cx + fx0)
     by0 = np.minimum(gy0 - room, cy + fy0)
@@ -194,16 +202,84 @@ def _place(plan: Plan, k: int, radius: float, *, sizes, room: float, caption,
     fits = np.zeros(len(cx), dtype=bool)
     for sw, sh in sizes:
         fits |= (w <= sw) & (h <= sh)
-    ok = np.flatnonzero(free & fits)
-    if not len(ok):
-        return None
+    ok = np.flatnonzero(fits)
     score = np.round(w * h, 6)[ok]
     far = np.round(np.hypot(cx - middle[0], cy - middle[1]), 6)[ok]
-    best = ok[np.lexsort((cy[ok], cx[ok], far, score))[0]]
+    best = ink.first_free(ok[np.lexsort((cy[ok], cx[ok], far, score))], cx, cy, detail_box)
+    if best is None:
+        return None
     centre = (float(cx[best]), float(cy[best]))
     mid = (float(middle[0]), float(middle[1]))
     return PoleRegion(k, radius, mid, region, centre, frame, (centre[0] - frame, centre[1] + frame + CAPTION_GAP_MM),
                       (float(centre[0] + fx0), float(centre[1] + fy0), float(centre[0] + fx1), float(centre[1] + fy1)))
+
+
+@dataclass(frozen=True)
+class _Ink:
+    """What a detail keeps CLEAR_MM from (mm, plan frame): the segments of the vectors and
+    construction lines, the images and the region's circle ``disc`` (a polygon)."""
+
+    segments: np.ndarray      # (m, 2, 2)
+    points: np.ndarray        # (q, 2)
+    disc: shapely.Polygon
+
+    @classmethod
+    def of(cls, plan: Plan, middle: np.ndarray, region: float) -> "_Ink":
+        """The ink of ``plan``, its region a circle of radius ``region`` round ``middle`` (mm)."""
+        segs = [(v.tail, v.head) for v in plan.vectors if v.length > 0] + [(l.start, l.end) for l in plan.lines]
+        points = np.array([p.xy for p in plan.points], dtype=float).reshape(-1, 2)
+        disc = shapely.Point(middle).buffer(region, quad_segs=8)
+        return cls(np.array(segs, dtype=float).reshape(-1, 2, 2), points, disc)
+
+    @property
+    def bounds(self) -> tuple[float, float, float, float]:
+        """x0, y0, x1, y1 of all the ink, mm."""
+        xy = np.concatenate([self.segments.reshape(-1, 2), self.points, shapely.get_coordinates(self.disc)])
+        return (float(xy[:, 0].min()), float(xy[:, 1].min()), float(xy[:, 0].max()), float(xy[:, 1].max()))
+
+    def first_free(self, order: np.ndarray, cx: np.ndarray, cy: np.ndarray,
+                   box: tuple[float, float, float, float]) -> int | None:
+        """The first place in ``order`` where the detail's ``box`` (x0, y0, x1, y1 about the
+        place ``cx``, ``cy``; mm) meets no ink grown by CLEAR_MM, or None.
+
+        The ink grown as a whole is the union of its pieces grown one by one (segments cut
+        into pieces of at most _PIECE_MM, so that an index of them is queried locally; a piece
+        is grown when a tested box first comes near it). A place whose box, grown by
+        _SURE_MM, holds a point of the ink is ruled out without a test (that point lies within
+        CLEAR_MM · cos(π/16), the inner radius of a grown point, of the box); the others are
+        tested exactly, in order, a chunk at a time. Time: linear in the ink and the places."""
+        if not len(order):
+            return None
+        x0, y0, x1, y1 = box
+        g = _SURE_MM
+        ox, oy = cx[order], cy[order]
+        pts = np.concatenate([samples(self.segments, _SAMPLE_MM), self.points,
+                              shapely.get_coordinates(self.disc), shapely.get_coordinates(self.disc.centroid)])
+        span = (float(min(ox.min() + x0, pts[:, 0].min())) - g, float(min(oy.min() + y0, pts[:, 1].min())) - g,
+                float(max(ox.max() + x1, pts[:, 0].max())) + g, float(max(oy.max() + y1, pts[:, 1].max())) + g)
+        raster = PointRaster.of(pts, span, _CELL_MM)
+        open_ = raster.count_inside(ox + x0 - g, oy + y0 - g, ox + x1 + g, oy + y1 + g) == 0
+        order = order[open_]
+        cut, _ = pieces(self.segments, _PIECE_MM)
+        ink = np.concatenate([shapely.linestrings(cut), shapely.points(self.points), [self.disc]])
+        tree = shapely.STRtree(ink)
+        grown, made = np.empty(len(ink), dtype=object), np.zeros(len(ink), dtype=bool)
+        r = CLEAR_MM
+        for start in range(0, len(order), _CHUNK):
+            part = order[start:start + _CHUNK]
+            px, py = cx[part], cy[part]
+            # a piece grown by CLEAR_MM lies within its bounding box grown by as much: grow (once)
+            # and test only the pieces whose bounding box comes that near
+            bi, gi = tree.query(shapely.box(px + x0 - r, py + y0 - r, px + x1 + r, py + y1 + r))
+            new = np.unique(gi[~made[gi]])
+            grown[new], made[new] = shapely.buffer(ink[new], r, quad_segs=4), True
+            hit = np.zeros(len(part), dtype=bool)
+            boxes = shapely.box(px[bi] + x0, py[bi] + y0, px[bi] + x1, py[bi] + y1)
+            hit[bi[shapely.intersects(boxes, grown[gi])]] = True
+            free = np.flatnonzero(~hit)
+            if len(free):
+                return int(part[free[0]])
+        return None
 
 
 def _reach(radius: float) -> float:

@@ -10,19 +10,26 @@ when the label's box, grown by :data:`CLEARANCE`, touches no inked geometry, no 
 before it, and stays inside the drawing area. Far spots (:data:`LEADER_GAPS`) get a thin
 leader from the anchor. A label may name a line rather than a point (``also``: further anchors
 along it, tried in turn at each stage of gaps). A label that finds no free spot at all is put at its least crowded
-candidate and counted in :attr:`Canvas.crowded` (the layout test requires none).
+candidate (the least ink, label and leader under it: :meth:`Canvas._least_crowded`) and
+counted in :attr:`Canvas.crowded` (the layout test requires none). Every search reads only
+what lies near its anchor (:class:`~plans.drawing.ink_index.InkIndex`,
+:class:`~plans.spatial.BoxGrid`, :class:`~plans.drawing.occupancy.Occupancy`), so placing n
+labels takes time linear in n.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import Sequence
 
 import numpy as np
 import shapely
 import svgwrite
 
+from ..spatial import BoxGrid, segments_meet_boxes
+from .ink_index import InkIndex
+from .occupancy import Occupancy
 from .style import Style
 from .text import FONT, SUB_SHIFT, SUB_SIZE, Box, Run, box, runs
 
@@ -37,6 +44,12 @@ CLEARANCE = 0.25
 DIRECTIONS = 16
 #: The gaps tried in turn (nearest first; the last stage with leaders).
 _STAGES = ((GAPS[:2], False), (GAPS[2:], False), (LEADER_GAPS, True))
+#: Placed labels and leaders are bucketed in square cells this wide, mm (see :mod:`plans.spatial`).
+_CELL_MM = 10.0
+#: The largest gap tried, mm.
+_FARTHEST = max(GAPS + LEADER_GAPS)
+#: A candidate outside the drawing area scores this much worse than any inside it.
+_OUTSIDE = 10 ** 9
 
 
 def fmt(x: float, decimals: int) -> str:
@@ -67,10 +80,15 @@ class Canvas:
         self.dx, self.dy = offset
         self.area = area
         self.ink: list = []
+        self._straight: dict[int, tuple[tuple[tuple[float, float], tuple[float, float]], float]] = {}
         self._requests: list[_Request] = []
         self.crowded = 0
         self.placed: list[Box] = []
-        self._leaders: list = []
+        self._placed_grid = BoxGrid(_CELL_MM)
+        # (ax, ay, bx, by) of each leader drawn, mm: as many rows in use as the leaders' grid holds
+        self._leader_ends = np.empty((0, 4))
+        self._leader_grid = BoxGrid(_CELL_MM)
+        self._occupancy = Occupancy((area.x0, area.y0, area.x1, area.y1))
 
     # -- coordinates -------------------------------------------------------------------
     def paper(self, p: Sequence[float]) -> tuple[float, float]:
@@ -152,7 +170,15 @@ class Canvas:
     def _ink_line(self, pts, width: float | None) -> None:
         half = 0.5 * (width if width is not None else self.style.thin)
         geom = shapely.LineString(pts)
+        if len(pts) == 2 and pts[0] != pts[1]:
+            self._straight[len(self.ink)] = ((pts[0], pts[1]), half if half > 0.2 else 0.0)
         self.ink.append(geom.buffer(half, cap_style="flat", quad_segs=1) if half > 0.2 else geom)
+
+    def _place(self, b: Box) -> None:
+        """Remember ``b`` as taken by a label."""
+        self.placed.append(b)
+        self._placed_grid.add((b.x0, b.y0, b.x1, b.y1))
+        self._occupancy.add_label((b.x0, b.y0, b.x1, b.y1))
 
     # -- text ------------------------------------------------------------------------------
     def text(self, parent, at_paper: tuple[float, float], label: str, *, size: float, italic: bool = False,
@@ -161,7 +187,7 @@ class Canvas:
         parts = runs(label, digits=digits)
         parent.add(self._text_el(parts, at_paper, size, italic, anchor, ident, fill))
         b = box(parts, size, italic, at_paper[0], at_paper[1], anchor)
-        self.placed.append(b)
+        self._place(b)
         return b
 
     def _text_el(self, parts, at, size, italic, anchor, ident, fill):
@@ -193,72 +219,129 @@ class Canvas:
 
     def place_labels(self, leader_parent) -> None:
         """Place every requested label (see the module docstring)."""
-        tree = shapely.STRtree(self.ink) if self.ink else None
+        ink = InkIndex.of(self.ink, self._straight) if self.ink else None
         angles = np.arange(DIRECTIONS) * (2 * math.pi / DIRECTIONS)
         for req in self._requests:
             b0 = box(req.parts, req.size, req.italic, 0.0, 0.0)
             w, h_up, h_down = b0.x1, -b0.y0, b0.y1
             order = np.argsort(np.abs((angles - req.prefer + math.pi) % (2 * math.pi) - math.pi), kind="stable")
             dirs = angles[order]
-            best = None
-            anchor, chosen = req.anchor, None
-            for gaps, leader in _STAGES:
-                for at in (req.anchor,) + req.others:
-                    x0, y0, hits, free = self._candidates(req, dirs, gaps, w, h_up + h_down, tree, leader, at)
-                    ok = np.flatnonzero(free & (hits == 0))
-                    if len(ok):
-                        k = int(ok[0])
+            anchor, chosen, failed = req.anchor, None, []
+            tries = [(gaps, leader, at) for gaps, leader in _STAGES for at in (req.anchor,) + req.others]
+            # the nearest gaps round the anchor first (where most labels go), then all the others at once
+            for batch in (tries[:1], tries[1:]):
+                x0, y0, ok, free, ends = self._candidates(req, dirs, batch, w, h_up + h_down, ink)
+                for (gaps, leader, at), lo, hi in zip(batch, ends[:-1], ends[1:]):
+                    first = np.flatnonzero(ok[lo:hi])
+                    if len(first):
+                        k = lo + int(first[0])
                         chosen, anchor = (x0[k], y0[k]), at
                         break
-                    score = hits + (~free) * 1000
-                    k = int(np.argmin(score))
-                    if best is None or score[k] < best[0]:
-                        best = (score[k], (x0[k], y0[k]), leader, at)
+                    failed.append((leader, at, x0[lo:hi], y0[lo:hi], free[lo:hi]))
                 if chosen is not None:
                     break
             else:
                 self.crowded += 1
-                chosen, leader, anchor = best[1], best[2], best[3]
+                chosen, leader, anchor = self._least_crowded(failed, w, h_up + h_down, ink)
             bx = Box(chosen[0], chosen[1], chosen[0] + w, chosen[1] + h_up + h_down)
-            self.placed.append(bx)
+            self._place(bx)
             req.parent.add(self._text_el(req.parts, (bx.x0, bx.y0 + h_up), req.size, req.italic, "start",
                                          req.ident or None, req.fill))
             if leader:
                 self._leader(leader_parent, anchor, bx)
         self._requests.clear()
 
-    def _candidates(self, req: _Request, dirs, gaps, w: float, h: float, tree, leader: bool, anchor=None):
-        """Candidate boxes (left, top) at ``gaps`` × ``dirs`` around ``anchor`` (the request's
-        by default), how many things each touches, and whether each lies in the drawing area."""
-        if anchor is not None:
-            req = replace(req, anchor=anchor)
-        g = np.array([max(gap, req.near) for gap in gaps])[:, None]
-        ux, uy = np.cos(dirs)[None, :], np.sin(dirs)[None, :]
+    def _least_crowded(self, failed, w: float, h: float, ink: InkIndex | None):
+        """The place, leader and anchor of the least crowded of the ``failed`` tries' candidates
+        (the first of the lowest score in the first try that has it). The score costs the same
+        wherever the candidate is: each millimetre of ink under the box counts 1, each cell
+        (1 mm²) of a label or leader it overlaps 1 (:class:`~plans.drawing.occupancy.Occupancy`),
+        each millimetre of its leader over a label 1, and a place outside the drawing area
+        more than any inside it."""
+        x0 = np.concatenate([f[2] for f in failed])
+        y0 = np.concatenate([f[3] for f in failed])
+        c = CLEARANCE
+        x1, y1 = x0 + w + c, y0 + h + c
+        score = self._occupancy.covered(x0 - c, y0 - c, x1, y1)
+        if ink is not None:
+            score += ink.ink_mm(x0 - c, y0 - c, x1, y1)
+        score += np.concatenate([~f[4] for f in failed]) * _OUTSIDE
+        legs = [np.stack([np.full(len(xs), at[0]), np.full(len(xs), at[1]), np.clip(at[0], xs, xs + w),
+                          np.clip(at[1], ys, ys + h)], axis=1) for leader, at, xs, ys, _ in failed if leader]
+        if legs:
+            over = iter(np.split(self._occupancy.over_labels(np.concatenate(legs)),
+                                 np.cumsum([len(g) for g in legs])[:-1]))
+        best, lo = None, 0
+        for leader, at, xs, ys, free in failed:
+            hi = lo + len(xs)
+            mine = score[lo:hi] + next(over) if leader else score[lo:hi]
+            lo = hi
+            k = int(np.argmin(mine))
+            if best is None or mine[k] < best[0]:
+                best = (mine[k], (xs[k], ys[k]), leader, at)
+        return best[1], best[2], best[3]
+
+    def _candidates(self, req: _Request, dirs, tries, w: float, h: float, ink: InkIndex | None):
+        """Candidate boxes (left, top) for each of ``tries`` (gaps, with a leader, anchor): at
+        the gaps × ``dirs`` round the anchor; whether each is free (in the drawing area,
+        touching no ink, label or leader, its leader crossing no label), whether it lies in the
+        drawing area, and where each try's candidates start (and the last ends). Labels and
+        leaders are looked at only for the candidates in the area and clear of ink."""
+        xs, ys, ends = [], [], [0]
         hw, hh = w / 2, h / 2
+        ux, uy = np.cos(dirs)[None, :], np.sin(dirs)[None, :]
         reach = np.abs(ux) * hw + np.abs(uy) * hh   # the box's edge nearest the anchor is ``gap`` away
-        x0 = (req.anchor[0] + ux * (g + reach) - hw).ravel()
-        y0 = (req.anchor[1] + uy * (g + reach) - hh).ravel()
+        for gaps, leader, at in tries:
+            g = np.array([max(gap, req.near) for gap in gaps])[:, None]
+            xs.append((at[0] + ux * (g + reach) - hw).ravel())
+            ys.append((at[1] + uy * (g + reach) - hh).ravel())
+            ends.append(ends[-1] + len(xs[-1]))
+        x0, y0 = (np.concatenate(v) if len(v) > 1 else v[0] for v in (xs, ys))
         x1, y1 = x0 + w, y0 + h
         a = self.area
         free = (x0 >= a.x0) & (x1 <= a.x1) & (y0 >= a.y0) & (y1 <= a.y1)
         c = CLEARANCE
-        hits = np.zeros(len(x0), dtype=int)
+        ok = free.copy()
+        if ink is not None and ok.any():
+            k = np.flatnonzero(ok)
+            ok[k[ink.touches(x0[k] - c, y0[k] - c, x1[k] + c, y1[k] + c)]] = False
+        k = np.flatnonzero(ok)
+        if not len(k):
+            return x0, y0, ok, free, ends
+        bx0, by0, bx1, by1 = x0[k], y0[k], x1[k], y1[k]
+        hit = np.zeros(len(k), dtype=bool)
+        span = _FARTHEST + req.near + w + h + c     # no candidate reaches farther from its anchor
+        at = [t[2] for t in tries]
+        near = (min(p[0] for p in at) - span, min(p[1] for p in at) - span,
+                max(p[0] for p in at) + span, max(p[1] for p in at) + span)
         if self.placed:
-            p = np.array([(q.x0, q.y0, q.x1, q.y1) for q in self.placed])
-            hits += ((x0[:, None] < p[None, :, 2] + c) & (p[None, :, 0] < x1[:, None] + c)
-                     & (y0[:, None] < p[None, :, 3] + c) & (p[None, :, 1] < y1[:, None] + c)).sum(axis=1)
-        boxes = shapely.box(x0 - c, y0 - c, x1 + c, y1 + c)
-        if tree is not None:
-            np.add.at(hits, tree.query(boxes, predicate="intersects")[0], 1)
-        for seg in self._leaders:
-            hits += shapely.intersects(boxes, seg)
-        if leader and self.placed:   # a leader may cross lines, never another label
-            ends = np.stack([np.clip(req.anchor[0], x0, x1), np.clip(req.anchor[1], y0, y1)], axis=1)
-            starts = np.broadcast_to(np.array(req.anchor, dtype=float), ends.shape)
-            legs = shapely.linestrings(np.stack([starts, ends], axis=1))
-            others = shapely.union_all([shapely.box(q.x0 - c, q.y0 - c, q.x1 + c, q.y1 + c) for q in self.placed])
-            hits += shapely.intersects(legs, others)
-        return x0, y0, hits, free
+            p = self._placed_grid.array(self._placed_grid.near(*near))
+            hit |= ((bx0[:, None] < p[None, :, 2] + c) & (p[None, :, 0] < bx1[:, None] + c)
+                    & (by0[:, None] < p[None, :, 3] + c) & (p[None, :, 1] < by1[:, None] + c)).any(axis=1)
+        leaders = self._leader_grid.near(*near)
+        if len(leaders):   # only the pairs whose bounding boxes meet are tested
+            grown = np.stack([bx0 - c, by0 - c, bx1 + c, by1 + c], axis=1)
+            bi, li = np.nonzero(_meet(grown, self._leader_grid.array(leaders)))
+            if len(bi):
+                hit[bi[segments_meet_boxes(self._leader_ends[leaders[li]], grown[bi])]] = True
+        lead = np.zeros(len(x0), dtype=bool)
+        for t, (_, leader, _) in enumerate(tries):
+            lead[ends[t]:ends[t + 1]] = leader
+        m = np.flatnonzero(lead[k] & ~hit)
+        if len(m) and self.placed:   # a leader may cross lines, never another label
+            anchors = np.zeros((len(x0), 2))
+            for t, (_, _, at_t) in enumerate(tries):
+                anchors[ends[t]:ends[t + 1]] = at_t
+            ax, ay = anchors[k[m], 0], anchors[k[m], 1]
+            legs = np.stack([ax, ay, np.clip(ax, bx0[m], bx1[m]), np.clip(ay, by0[m], by1[m])], axis=1)
+            reach = (min(near[0], float(ax.min())), min(near[1], float(ay.min())),
+                     max(near[2], float(ax.max())), max(near[3], float(ay.max())))
+            q = self._placed_grid.array(self._placed_grid.near(*reach)) + np.array([-c, -c, c, c])
+            li, qi = np.nonzero(_meet(np.concatenate([np.minimum(legs[:, :2], legs[:, 2:]),
+                                                      np.maximum(legs[:, :2], legs[:, 2:])], axis=1), q))
+            hit[m[li[segments_meet_boxes(legs[li], q[qi])]]] = True
+        ok[k[hit]] = False
+        return x0, y0, ok, free, ends
 
     def _leader(self, parent, anchor, bx: Box) -> None:
         """A thin line from the anchor to the nearest point of the label's box."""
@@ -268,4 +351,15 @@ class Canvas:
                            stroke=self.style.construction_colour, stroke_width=fmt(self.style.thin * 0.6, 3))
         el.attribs["class"] = "leader"
         parent.add(el)
-        self._leaders.append(shapely.LineString([anchor, (nx, ny)]))
+        n = len(self._leader_grid)
+        if n == len(self._leader_ends):
+            self._leader_ends = np.concatenate([self._leader_ends, np.empty((max(16, n), 4))])
+        self._leader_ends[n] = (anchor[0], anchor[1], nx, ny)
+        self._leader_grid.add((min(anchor[0], nx), min(anchor[1], ny), max(anchor[0], nx), max(anchor[1], ny)))
+        self._occupancy.add_leader((anchor[0], anchor[1], nx, ny))
+
+
+def _meet(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """(k, m): whether closed boxes a[i] and b[j] (x0, y0, x1, y1) meet."""
+    return ((a[:, None, 0] <= b[None, :, 2]) & (b[None, :, 0] <= a[:, None, 2])
+            & (a[:, None, 1] <= b[None, :, 3]) & (b[None, :, 1] <= a[:, None, 3]))

@@ -12,11 +12,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Sequence
 
+import numpy as np
 import svgwrite
 
 from .canvas import Canvas, fmt
 from .style import Style
-from .text import Box, box, plain, runs, width, wrap
+from .font_metrics import BOOK
+from .text import SUB_SIZE, UNKNOWN_EM, Box, box, plain, runs, width, wrap
 
 __all__ = ["Format", "FORMATS", "choose_format", "TitleBlock", "new_sheet", "FRAME_MM", "TITLE_BLOCK_MM",
            "LARGEST"]
@@ -113,9 +115,28 @@ def _fit(text: str, room: float, size: float, smallest: float) -> tuple[str, flo
         return text, size
     if w * smallest / size <= room:
         return text, size * room / w
+    text = text[:_most_chars(text, room, smallest)]
     while text and width(runs(text + "…"), smallest, False) > room:
         text = text[:-1]
     return text.rstrip() + "…", smallest
+
+
+def _most_chars(text: str, room: float, size: float) -> int:
+    """How many leading characters of ``text`` might fit ``room`` mm at height ``size`` with
+    "…" after them, so that :func:`_fit` cuts from there, not from the end. Plain text (its
+    width grows with every character): the last prefix that fits, from the running sum of the
+    advance widths, and two more for rounding. With markup: the first prefix that would fill
+    more than the room even were every glyph a subscript (the markup characters _ { } print
+    nothing), and every longer one does too."""
+    em, _, _, table = BOOK
+    default = UNKNOWN_EM * em
+    advance = np.array([table.get(c, default) for c in text] or [0.0])
+    if "_" not in text:
+        ends = (np.cumsum(advance) + table.get("…", default)) / em * size      # ends[k]: text[:k + 1] + "…"
+        return min(len(text), int(np.searchsorted(ends, room, side="right")) + 2)
+    advance[[i for i, c in enumerate(text) if c in "_{}"]] = 0.0
+    least = np.cumsum(advance) / em * SUB_SIZE * size * (1.0 - 1e-9)               # least[k]: text[:k + 1]
+    return min(len(text), int(np.searchsorted(least, room, side="right")) + 1)
 
 
 #: A title-block value is shrunk down to this height on one line (mm), then wrapped on two.

@@ -45,6 +45,7 @@ from .sheet import FORMATS, TitleBlock, choose_format, new_sheet, note_lines
 from .style import Style
 from .text import ASCENT, DESCENT, runs, width as text_width
 from .. import linalg as la
+from ..spatial import PointGrid
 
 __all__ = ["Heading", "draw_plan", "draw_scheme", "draw_centres", "plan_layers", "centre_rays", "fmt", "detail_of",
            "detail_caption", "detail_layers"]
@@ -78,12 +79,23 @@ def _direction(canvas: Canvas, tail, head) -> str:
     return direction_text(x1 - x0, y1 - y0)
 
 
-def _image_label(plan: Plan, xy) -> str | None:
-    """The label of the plan image at ``xy`` (the first within SAME_IMAGE_MM: the pole first)."""
-    for p in plan.points:
+def _image_label(plan: Plan, xy, images: PointGrid | None = None) -> str | None:
+    """The label of the plan image at ``xy`` (the first within SAME_IMAGE_MM: the pole first);
+    ``images``: the plan's points in a :class:`~plans.spatial.PointGrid` (:func:`_images`), to
+    look only near ``xy``."""
+    for k in range(len(plan.points)) if images is None else images.near(xy):
+        p = plan.points[k]
         if math.hypot(p.xy[0] - xy[0], p.xy[1] - xy[1]) <= SAME_IMAGE_MM:
             return p.label
     return None
+
+
+def _images(plan: Plan) -> PointGrid:
+    """The plan's images in a grid, for :func:`_image_label`."""
+    grid = PointGrid(SAME_IMAGE_MM)
+    for p in plan.points:
+        grid.add(p.xy)
+    return grid
 
 
 def _tag(el, canvas: Canvas, quantity: str, value: float, tail, head, start: str | None, end: str | None) -> None:
@@ -106,17 +118,20 @@ def _sheet(bounds, heading: Heading, scales: str, ident: str, style: Style):
                      block=TitleBlock(heading.mechanism, heading.sheet, heading.position, scales))
 
 
-def _preferred(xy, segments: list[tuple[tuple[float, float], tuple[float, float]]], centre) -> np.ndarray:
+def _preferred(xy, segments: list[tuple[tuple[float, float], tuple[float, float]]], centre,
+               ends: PointGrid | None = None) -> np.ndarray:
     """Where a label of image ``xy`` goes: away from the segments that meet there, else away
-    from the plan's centre."""
+    from the plan's centre. ``ends``: the segments' ends (2k: the start of segment k, 2k + 1
+    its end) in a :class:`~plans.spatial.PointGrid` of reach 1e-6, to look only near ``xy``."""
     pull = np.zeros(2)
-    for a, b in segments:
-        for end, other in ((a, b), (b, a)):
-            if math.dist(end, xy) < 1e-6:
-                d = np.subtract(other, end)
-                n = float(la.norm(d))
-                if n > 1e-9:
-                    pull += d / n
+    for e in range(2 * len(segments)) if ends is None else ends.near(xy):
+        a, b = segments[e // 2]
+        end, other = (a, b) if e % 2 == 0 else (b, a)
+        if math.dist(end, xy) < 1e-6:
+            d = np.subtract(other, end)
+            n = float(la.norm(d))
+            if n > 1e-9:
+                pull += d / n
     if la.norm(pull) > 1e-6:
         return -pull
     away = np.subtract(xy, centre)
@@ -246,18 +261,26 @@ def plan_layers(dwg, canvas: Canvas, plan: Plan, ident: str, style: Style, *,
     images' dots, and label requests (placed by the caller's ``canvas.place_labels``); the
     images in ``unlabelled`` (named on a detail instead) keep their dot but get no letter."""
     g = plan_group(dwg, canvas, plan, plan.kind, ident, style)
+    images = _images(plan)
     for k, v in enumerate(plan.vectors):
         colour = style.vector_colour if v.kind in ("absolute", "relative") else style.component_colour
         el = _vector(canvas, g, v.tail, v.head, colour, f"{ident}-v{k}", f"{ident}-h{k}", style)
-        _tag(el, canvas, v.quantity, v.value, v.tail, v.head, _image_label(plan, v.tail), _image_label(plan, v.head))
+        _tag(el, canvas, v.quantity, v.value, v.tail, v.head, _image_label(plan, v.tail, images),
+             _image_label(plan, v.head, images))
     labels = dwg.g(id=f"{ident}-labels", fill=style.colour)
     segments = [(v.tail, v.head) for v in plan.vectors] + [(l.start, l.end) for l in plan.lines]
+    ends = PointGrid(1e-6)
+    for a, b in segments:
+        ends.add(a)
+        ends.add(b)
     centre = np.mean([p.xy for p in plan.points], axis=0)
     groups: list[list] = []
+    firsts = PointGrid(COINCIDE_MM)     # each group's first image, to find a coinciding one near
     for p in plan.points:
-        same = next((grp for grp in groups if math.dist(grp[0].xy, p.xy) < COINCIDE_MM), None)
+        same = next((groups[k] for k in firsts.near(p.xy) if math.dist(groups[k][0].xy, p.xy) < COINCIDE_MM), None)
         if same is None:
             groups.append([p])
+            firsts.add(p.xy)
         else:
             same.append(p)
     for k, grp in enumerate(groups):
@@ -267,8 +290,8 @@ def plan_layers(dwg, canvas: Canvas, plan: Plan, ident: str, style: Style, *,
         if not named:
             continue
         text = " ≡ ".join(_markup(p.label) for p in named)
-        canvas.label(labels, xy, text, size=style.text, prefer=_preferred(xy, segments, centre), ident=f"{ident}-l{k}",
-                     digits=False, near=0.5)
+        canvas.label(labels, xy, text, size=style.text, prefer=_preferred(xy, segments, centre, ends),
+                     ident=f"{ident}-l{k}", digits=False, near=0.5)
     g.add(labels)
     dwg.add(g)
 

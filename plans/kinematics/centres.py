@@ -106,8 +106,53 @@ def centres(motion: Solution) -> Centres:
     moving = motion.mechanism.moving
     scale = motion.rate_scale(1)
     absolute = {name: _centre(motion, name, FRAME, scale) for name in moving}
-    relative = {(a, b): _centre(motion, a, b, scale) for a, b in combinations(moving, 2)}
+    if any(motion.links[name].v is None for name in moving):
+        relative = {(a, b): _centre(motion, a, b, scale) for a, b in combinations(moving, 2)}
+    else:
+        relative = _relative(motion, moving, scale)
     return Centres(absolute, relative)
+
+
+def _spin_many(v: np.ndarray, w: np.ndarray, r: np.ndarray) -> np.ndarray:
+    """v + w·k×r over stacked links (..., N, 2), operation for operation as
+    :meth:`~plans.kinematics.state.LinkState.velocity` computes it for one."""
+    out = np.empty(np.broadcast_shapes(v.shape, r.shape))
+    np.subtract(v[..., 0], w * r[..., 1], out=out[..., 0])
+    np.add(v[..., 1], w * r[..., 0], out=out[..., 1])
+    return out
+
+
+def _relative(motion: Solution, moving: tuple[str, ...], scale: np.ndarray) -> dict[tuple[str, str], Centre]:
+    """:func:`_centre` of every pair (i, j), i before j in ``moving``: each link's quantities
+    once, then for each i all its j at once (the same operations, so the same bits): time
+    linear in the pairs, of which there are n(n − 1)/2."""
+    states = [motion.links[name] for name in moving]
+    size = motion.mechanism.size
+    v = np.stack([s.v for s in states])                              # (L, N, 2)
+    omega = np.stack([s.omega for s in states])                      # (L, N)
+    origin = np.stack([s.origin for s in states])
+    base = np.stack([s.v - s.omega[:, None] * J(s.origin) for s in states])
+    out: dict[tuple[str, str], Centre] = {}
+    for i, name in enumerate(moving[:-1]):
+        si, j = states[i], slice(i + 1, None)
+        x0 = si.point(next(iter(motion.mechanism.links[name].local.values())))
+        w = base[i] - base[j]
+        dw = si.omega - omega[j]
+        x = si.origin
+        v_rel = si.velocity(x) - _spin_many(v[j], omega[j], x - origin[j])
+        speed = np.maximum(la.norm(v_rel, axis=-1), np.abs(dw) * size)
+        still = np.maximum(la.norm(si.velocity(x0) - _spin_many(v[j], omega[j], x0 - origin[j]), axis=-1),
+                           np.abs(dw) * size)
+        rest = still <= REST_RTOL * scale
+        finite = (np.abs(dw) * size > INFINITY_RTOL * speed) & ~rest
+        safe = np.where(finite, dw, 1.0)
+        point = np.where(finite[..., None], J(w) / safe[..., None], np.nan)
+        norm = la.norm(v_rel, axis=-1)
+        infinite = ~finite & ~rest & (norm > 0.0)
+        direction = np.where(infinite[..., None], J(v_rel) / np.where(norm > 0.0, norm, 1.0)[..., None], 0.0)
+        for k, other in enumerate(moving[i + 1:]):
+            out[(name, other)] = Centre((name, other), point[k], direction[k], rest[k])
+    return out
 
 
 def centre_from(motion: Solution, link: str, point: str, i: int) -> np.ndarray | None:

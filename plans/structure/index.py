@@ -47,6 +47,15 @@ class _Index:
             self.incident[p.slider].append((i, p.slider, p.guide, None, p))
             self.incident[p.guide].append((i, p.guide, p.slider, None, p))
         self.adjacent: dict[str, set[str]] = {name: {e[2] for e in self.incident[name]} for name in mech.links}
+        self._later: dict[str, list[str]] = {}
+
+    def later_neighbours(self, link: str) -> list[str]:
+        """The neighbours of ``link`` listed after it in [links], in that order (kept once made)."""
+        later = self._later.get(link)
+        if later is None:
+            later = self._later[link] = sorted((x for x in self.neighbours[link] if self.rank[x] > self.rank[link]),
+                                               key=self.rank.__getitem__)
+        return later
 
     def joints(self, link: str, others: set[str]) -> list[Joint]:
         """The pairs joining ``link`` to any link of ``others`` (one joint per pin or slider)."""

@@ -25,7 +25,9 @@ and index; must not import kinematics or anything above the structure layer.
 
 from __future__ import annotations
 
+from bisect import bisect_left, insort
 from itertools import combinations
+from typing import Iterator
 
 from ..errors import StructureError
 from ..model import Mechanism
@@ -61,20 +63,63 @@ def _decompose(ix: "_Index", mech: Mechanism, known: set[str] | None = None) -> 
     original mechanism (by default the driving link)."""
     known = {FRAME, mech.drive.link} if known is None else set(known)
     remaining = {name for name in mech.moving if name not in known}
-    frontier = {x for k in known for x in ix.neighbours[k] if x in remaining}   # remaining links next to known ones
+    held = _Held(ix, known, remaining)
     groups: list[Group | ComplexGroup] = []
     while remaining:
-        group = _first_dyad(ix, known, remaining, frontier)
+        group = _first_dyad(ix, known, remaining, held.frontier, held)
         if group is None:
-            group = _first_complex(ix, known, remaining, frontier)
+            group = _first_complex(ix, known, remaining, set(held.frontier))
         if group is None:
             raise StructureError(_no_split(ix, known, remaining), key="links")
         groups.append(group)
         known |= set(group.links)
         remaining -= set(group.links)
-        frontier -= set(group.links)
-        frontier |= {x for k in group.links for x in ix.neighbours[k] if x in remaining}
+        for k in group.links:
+            held.learn(k)
     return groups
+
+
+class _Held:
+    """How many joints each remaining link has on the known links (``len(ix.joints(x, known))``),
+    kept up to date as links become known (:meth:`learn`): a pin counts for its carriers when
+    its first carrier becomes known, a slider when one of its two links does, so the search
+    reads each pin and slider a bounded number of times, however many links share a pin.
+    ``frontier``: the remaining links with a joint on the known ones (link → how many)."""
+
+    def __init__(self, ix: _Index, known: set[str], remaining: set[str]):
+        self.ix, self.remaining = ix, remaining
+        self.frontier: dict[str, int] = {}
+        self._carried: set[str] = set()
+        self._names = list(ix.rank)
+        self._single: list[int] = []          # ranks of the frontier links with one joint, ascending
+        for k in known:
+            self.learn(k)
+
+    def single(self) -> Iterator[str]:
+        """The frontier links with exactly one joint on the known ones, in [links] order."""
+        return (self._names[r] for r in self._single)
+
+    def learn(self, link: str) -> None:
+        """``link`` is known now (and no longer remaining)."""
+        if self.frontier.pop(link, 0) == 1:
+            del self._single[bisect_left(self._single, self.ix.rank[link])]
+        for point in self.ix.mech.links[link].points:
+            if point not in self._carried:
+                self._carried.add(point)
+                for x in self.ix.carriers[point]:
+                    self._bump(x)
+        for p in self.ix.sliding[link]:
+            self._bump(p.other(link))
+
+    def _bump(self, x: str) -> None:
+        if x not in self.remaining:
+            return
+        count = self.frontier[x] = self.frontier.get(x, 0) + 1
+        rank = self.ix.rank[x]
+        if count == 1:
+            insort(self._single, rank)
+        elif count == 2:
+            del self._single[bisect_left(self._single, rank)]
 
 
 def _no_split(ix: "_Index", known: set[str], remaining: set[str]) -> str:
@@ -156,17 +201,24 @@ def _driven_group(ix: "_Index", mech: Mechanism) -> "DrivenGroup":
                          "pairs, or drive a crank on the frame", key="drive.link")
 
 
-def _first_dyad(ix: _Index, known: set[str], remaining: set[str], frontier: set[str]) -> Group | None:
+def _first_dyad(ix: _Index, known: set[str], remaining: set[str], frontier,
+                held: "_Held | None" = None) -> Group | None:
     """The first pair of remaining links (in [links] order) that forms a class II group on
-    the known links: two adjacent frontier links, each with one outer pair."""
-    single = {x for x in frontier if len(ix.joints(x, known)) == 1}
-    best = None
-    for a in single:
-        for b in ix.neighbours[a]:
-            if b in single and ix.rank[a] < ix.rank[b] and (best is None or (ix.rank[a], ix.rank[b]) < best[0]) \
-                    and _dyad_fit(ix, known, a, b):
-                best = ((ix.rank[a], ix.rank[b]), a, b)
-    return None if best is None else _dyad(ix, known, best[1], best[2])
+    the known links: two adjacent frontier links, each with one outer pair. The links are
+    tried in that order and the first fit ends the search (a pin shared by many links makes
+    every pair of them adjacent: trying them all would cost their number squared).
+    ``held``: the joint counts kept by :func:`_decompose` (else counted here)."""
+    if held is None:
+        order = sorted((x for x in frontier if len(ix.joints(x, known)) == 1), key=ix.rank.__getitem__)
+        is_single = set(order).__contains__
+    else:
+        order, counts = held.single(), held.frontier
+        is_single = lambda x: counts.get(x) == 1    # noqa: E731
+    for a in order:
+        for b in ix.later_neighbours(a):
+            if is_single(b) and _dyad_fit(ix, known, a, b):
+                return _dyad(ix, known, a, b)
+    return None
 
 
 def _dyad_fit(ix: _Index, known: set[str], a: str, b: str) -> tuple[Joint, Joint, Joint] | None:

@@ -17,6 +17,7 @@ headline figures (``summary``) and charts. Nothing here prints or writes files.
 9. :func:`handout_time` (:mod:`.handout_time`) — a class set: time per variant, and for 999
 10. :func:`check_scale` (:mod:`.check_scale`) — plans check on hostile files: linear in vectors and nesting depth
 11. :func:`startup_tolerance` (:mod:`.startup_tolerance`) — the motor start-up's integrator tolerance → error, time
+12. :func:`fan_render` (:mod:`.fan_time`) — fans of 10 … 160 four-bar dyads rendered: seconds per link
 
 What several sections share lives in :mod:`.common` (table, configuration, scenes, timing) and
 :mod:`.pylinkage_model` (a scene as a pylinkage Linkage). This package must not import
@@ -27,7 +28,8 @@ from __future__ import annotations
 
 from typing import Callable
 
-from .common import FULL, QUICK, Column, Config, Section
+from .common import DEFAULT, FULL, QUICK, Column, Config, Section
+from .fan_time import FAN_FLAT_TARGET, fan_render
 from .group_cost import CLASS_COST_TARGET, class_cost
 from .limited import limited_walk
 from .check_scale import check_scale
@@ -40,13 +42,13 @@ from .resolution import cycle_resolution
 from .solver import SOLVER_CASES, SolverCase, solver_tolerance
 from .startup_tolerance import startup_tolerance
 
-__all__ = ["handout_time", "check_scale", "Column", "Section", "Config", "FULL", "QUICK", "SECTIONS", "drawing_precision", "solver_tolerance",
+__all__ = ["handout_time", "check_scale", "Column", "Section", "Config", "DEFAULT", "FULL", "QUICK", "SECTIONS", "drawing_precision", "solver_tolerance",
            "cycle_resolution", "throughput", "render_rate", "peer_comparison", "THROUGHPUT_TARGET", "SolverCase",
            "SOLVER_CASES", "numba_comparison", "class_cost", "limited_walk", "NUMBA_TARGET", "AGREEMENT_TARGET",
-           "CLASS_COST_TARGET", "startup_tolerance"]
+           "CLASS_COST_TARGET", "startup_tolerance", "fan_render", "FAN_FLAT_TARGET"]
 
 #: Every section in the order ``plans bench`` runs and prints them.
 SECTIONS: tuple[Callable[[Config], Section], ...] = (drawing_precision, solver_tolerance, cycle_resolution,
                                                      throughput, render_rate, peer_comparison,
                                                      numba_comparison, class_cost, limited_walk, handout_time,
-                                                     check_scale, startup_tolerance)
+                                                     check_scale, startup_tolerance, fan_render)

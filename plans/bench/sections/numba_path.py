@@ -110,6 +110,12 @@ def _pylinkage_pure_python(stem: str, sizes: tuple[int, ...], repeat: int, tmp: 
     return report, ""
 
 
+def _pure_repeat(cfg: Config) -> int:
+    """Runs of the pure-Python path per size: cfg.pure_python_repeat, at most cfg.repeat and
+    PURE_PYTHON_REPEAT."""
+    return max(1, min(cfg.repeat, cfg.pure_python_repeat, PURE_PYTHON_REPEAT))
+
+
 def _relative_differences(index: dict[str, int], pos: np.ndarray, vel: np.ndarray, acc: np.ndarray, motion,
                           r: float, omega: float) -> tuple[float, float, float]:
     """Largest |Δr|/r, |Δv|/(ω·r), |Δa|/(ω²·r) over the compared points (r: the crank)."""
@@ -149,8 +155,7 @@ def numba_comparison(cfg: Config) -> Section:
     rows = []
     with tempfile.TemporaryDirectory(prefix="plans-bench-") as tmp:
         if pl is not None:
-            pure, pure_why = _pylinkage_pure_python(NUMBA_SCENE, sizes, min(max(cfg.repeat, 1), PURE_PYTHON_REPEAT),
-                                                    tmp)
+            pure, pure_why = _pylinkage_pure_python(NUMBA_SCENE, sizes, _pure_repeat(cfg), tmp)
         if has_numba:   # compile (or load numba's cache) once, outside every timing
             warm, _ = pylinkage_model(pl, mech, NUMBA_SCENE, d.sketch_value, 1.0)
             warm.compile()
@@ -207,7 +212,7 @@ def numba_comparison(cfg: Config) -> Section:
                                 ": numba not installed; ")
                              + f"pure-Python path: the same call in a child Python process with numba hidden "
                              f"(pylinkage then binds njit to a no-op), best of "
-                             f"{min(max(cfg.repeat, 1), PURE_PYTHON_REPEAT)} at every N."
+                             f"{_pure_repeat(cfg)} at every N."
                              if pl is not None else f"not installed: its columns are empty; {INSTALL_HINT}"),
              "numba/plans time > 1: plans is faster (target ≥ "
              f"{NUMBA_TARGET:g}× and agreement ≤ {AGREEMENT_TARGET:.0e}). |Δr|/r, |Δv|/ωr, |Δa|/ω²r: largest "
