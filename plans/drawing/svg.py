@@ -73,9 +73,16 @@ def direction_text(dx: float, dy: float) -> str:
     return repr(180.0 if deg == -180.0 else deg)
 
 
+#: Below this length on paper (mm) a vector is a rounding zero: its direction reads 0.0, not
+#: whichever way the noise points (a diagram's ordinate of 1e-13 J drawn 1e-14 mm long).
+ZERO_LENGTH_MM = 1e-9
+
+
 def _direction(canvas: Canvas, tail, head) -> str:
     """The exact direction tail → head in degrees, SVG paper frame (y down)."""
     (x0, y0), (x1, y1) = canvas.paper(tail), canvas.paper(head)
+    if math.hypot(x1 - x0, y1 - y0) < ZERO_LENGTH_MM:
+        return "0.0"
     return direction_text(x1 - x0, y1 - y0)
 
 
