@@ -9,8 +9,6 @@ from importlib import resources
 from pathlib import Path
 from typing import Sequence
 
-import numpy as np
-
 from .errors import OutputError, PlansError, SceneError, one_line
 from .export import (DEFAULT_DPI, FORMATS, MAX_DPI, MIN_DPI, check_png_sizes, convert, output_names, parse_dpi,
                      parse_formats, require_cairo)

@@ -63,8 +63,6 @@ drawing, checking or anything above the constructions.
 
 from __future__ import annotations
 
-import numpy as np
-
 from ..kinematics import Motion, special
 from ..scene import FRAME
 # every name importable from this module before the split stays importable from here
