@@ -238,13 +238,14 @@ def test_compiled_rates_keep_a_link_at_rest_at_rest():
 
 
 def test_matrix_product_of_many_positions():
-    """Products of many positions (plans.linalg's fixed-order sums): numpy's product to rounding
-    (K = 20 terms: |error| ≤ 20 ε Σ|a||w| ≈ 20 × 2.2e-16 × 20 ≈ 1e-13 for standard normal entries)."""
-    from plans.kinematics import compiled
+    """Products of many positions (the compiled groups' T·q + Mc·cos θ + Ms·sin θ, by
+    plans.linalg's fixed-order sums): numpy's product to rounding (K = 20 terms: |error| ≤
+    20 ε Σ|a||w| ≈ 20 × 2.2e-16 × 20 ≈ 1e-13 for standard normal entries)."""
+    from plans import linalg as la
     rng = np.random.default_rng(3)
     a, w = rng.standard_normal((1543, 20)), rng.standard_normal((20, 12))
-    np.testing.assert_allclose(compiled._product(a, w), a @ w, rtol=0, atol=1e-13)
-    assert compiled._product(a[:5], w).shape == (5, 12)
+    np.testing.assert_allclose(la.matmul(a, w), a @ w, rtol=0, atol=1e-13)
+    assert la.matmul(a[:5], w).shape == (5, 12)
 
 
 def test_four_by_four_determinant():

@@ -44,12 +44,6 @@ def _cos_sin(th: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return np.cos(th), np.sin(th)
 
 
-def _product(a: np.ndarray, w: np.ndarray) -> np.ndarray:
-    """a @ w for a (M, K), w (K, N), by :func:`plans.linalg.matmul` (the same bits on every
-    processor, and no wait for a second BLAS thread on these skinny products)."""
-    return la.matmul(a, w)
-
-
 # the 2×2 minors of a 4×4 matrix's rows (0, 1) and (2, 3) on the column pairs (i, j), and the
 # signs pairing each with its complement (Laplace's expansion by complementary minors)
 _PAIRS_I = np.array([0, 0, 0, 1, 1, 2])
@@ -205,13 +199,13 @@ class CompiledGroup:
         th = q[:, 2::3]
         c, s = _cos_sin(th)
         qcs = np.concatenate((q, c, s), axis=1)
-        phi = _product(qcs, self._w)           # T·q + Mc·cos θ + Ms·sin θ in one product
+        phi = la.matmul(qcs, self._w)           # T·q + Mc·cos θ + Ms·sin θ in one product
         phi += self.known_rows[idx]
         if jacobian:
             m, n = len(idx), self.n
             a = np.empty((m, n, n))
             a[:] = self.template
-            a[:, :, 2::3] = _product(qcs[:, n:], self._k).reshape(m, n, n // 3)   # cos θ·Js − sin θ·Jc
+            a[:, :, 2::3] = la.matmul(qcs[:, n:], self._k).reshape(m, n, n // 3)   # cos θ·Js − sin θ·Jc
         for e in self.prismatic:
             self._prismatic(e, q, c, s, idx, phi, a if jacobian else None)
         return (phi, a) if jacobian else phi
@@ -406,9 +400,9 @@ class CompiledGroup:
         k2 = len(cols)
 
         def solve(phi: np.ndarray) -> np.ndarray:
-            z = _product(phi, q1t)
+            z = la.matmul(phi, q1t)
             x_b = np.einsum("mij,mj->mi", c_inv, z[:, k2:])
-            x_t = _product(z[:, :k2] - np.einsum("mij,mj->mi", g, x_b), r1_inv_t)
+            x_t = la.matmul(z[:, :k2] - np.einsum("mij,mj->mi", g, x_b), r1_inv_t)
             out = np.empty_like(phi)
             out[:, cols] = x_t
             out[:, 2::3] = x_b

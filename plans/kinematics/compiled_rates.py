@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..model import Mechanism
-from .compiled import CompiledGroup, States, _cos_sin, _product
+from .compiled import CompiledGroup, States, _cos_sin
 from .generic import GroupEquations, _with_rates
 from .state import LinkState, _spin
 from .. import linalg as la
@@ -103,7 +103,7 @@ class GroupRates:
             th = self.q[:, 2::3]
             c, s = _cos_sin(th)
             # the group's links' centripetal terms: −ω²·R(θ)·local at every pin, with signs
-            rhs -= _product(w2 * c, g._mc) + _product(w2 * s, g._ms)
+            rhs -= la.matmul(w2 * c, g._mc) + la.matmul(w2 * s, g._ms)
         else:
             rhs = self._generic_terms(states, 2)
         x = self._solve(rhs)
