@@ -23,14 +23,49 @@ def stem_of(name: str) -> str:
     return name.split("-")[0].split(".")[0]
 
 
+#: How long a worker waits for another worker's render of the demo (s): ten times its ~20 s.
+_DEMO_WAIT_S = 600.0
+
+
 @pytest.fixture(scope="session")
 def demo_rendered(tmp_path_factory):
     """Every bundled example, linkages and gears, rendered once by ``plans demo`` (what the
-    README's first command puts into output/)."""
+    README's first command puts into output/); read only. Under pytest-xdist the workers share
+    one render: the first to create ``demo.lock`` in the run's shared temporary folder renders,
+    the others wait for ``demo.done`` (which says ``ok`` or why the render failed)."""
+    import os
+    import time
+
     from plans.cli import main
 
-    out = tmp_path_factory.mktemp("demo")
-    assert main(["demo", "-o", str(out), "-q"]) == 0
+    root = tmp_path_factory.getbasetemp()
+    if os.environ.get("PYTEST_XDIST_WORKER"):
+        root = root.parent                     # this run's folder, shared by its workers
+    out, done = root / "demo", root / "demo.done"
+    try:
+        os.close(os.open(root / "demo.lock", os.O_CREAT | os.O_EXCL | os.O_WRONLY))
+    except FileExistsError:                    # another worker renders it
+        deadline = time.monotonic() + _DEMO_WAIT_S
+        while not done.exists():
+            if time.monotonic() > deadline:
+                pytest.fail(f"the demo render in {out} did not finish within {_DEMO_WAIT_S:.0f} s")
+            time.sleep(0.1)
+        state = done.read_text(encoding="utf-8")
+        assert state == "ok", f"the demo render failed in another worker: {state}"
+        return out
+    state = "plans demo did not finish"
+    try:
+        out.mkdir()
+        code = main(["demo", "-o", str(out), "-q"])
+        state = "ok" if code == 0 else f"plans demo exited {code}"
+    except BaseException as exc:               # the waiting workers must hear of it too
+        state = f"plans demo raised {exc!r}"
+        raise
+    finally:
+        tmp = root / "demo.done.tmp"
+        tmp.write_text(state, encoding="utf-8")
+        tmp.replace(done)                      # appears whole
+    assert state == "ok", state
     return out
 
 

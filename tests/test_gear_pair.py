@@ -213,7 +213,7 @@ def test_working_profiles_lie_on_the_cut_flanks_and_touch_on_the_line_of_action(
     the cut's tolerance on paper) and each pair of them touches the other wheel's profile."""
     from shapely.geometry import Polygon
 
-    from plans.constructions.gear_pair import meshing
+    from plans.constructions.gear_pair import CUT_TOLERANCE, meshing
     from plans.gears.pair import analyse_pair
     from plans.scene import read_scene
 
@@ -222,8 +222,20 @@ def test_working_profiles_lie_on_the_cut_flanks_and_touch_on_the_line_of_action(
     wheels = {n: Polygon(o) for n, o in s.outlines}
     profiles = [(n, pts) for n, kind, pts in s.curves if n.startswith("working-profile")]
     assert len(profiles) == 4
+    p = a.pair
+    # where a pair of involutes touch, their radii of curvature add up to N1N2 = a_w·sin α_w; on
+    # the active line B1B2 the smallest are N1B2 and N2B1 (g_i = √(r_a² − r_b²) from N_i to B_j)
+    n1n2 = p.a_w * math.sin(p.alpha_w)
+    g = [math.sqrt((da / 2) ** 2 - (db / 2) ** 2) for da, db in zip(p.da, p.db)]
+    curvature = 1.0 / (n1n2 - g[1]) + 1.0 / (n1n2 - g[0])          # 1/ρ1 + 1/ρ2 at most, 1/mm
     for name, pts in profiles:
         own, other = ("wheel1", "wheel2") if "profile1" in name else ("wheel2", "wheel1")
         d = shapely.distance(shapely.points(pts), wheels[own].exterior)
-        assert d.max() <= 1e-3 * s.k                      # 1 µm of the wheel
-        assert shapely.distance(shapely.points(pts), wheels[other].exterior).min() <= 1e-3 * s.k
+        # the scallops between the cutter's rolled positions are at most CUT_TOLERANCE deep
+        # (step_for: ρ·Δφ²/8 with the largest ρ); as much again for the cutter fillet's polygon
+        assert d.max() <= 2.0 * CUT_TOLERANCE * s.k
+        # the touching point lies within half a sample step ds of a drawn point, where the gap
+        # between the two profiles opens as (ds/2)²·(1/ρ1 + 1/ρ2)/2; plus the cut's tolerance
+        ds = float(np.max(np.hypot(*np.diff(pts, axis=0).T))) / s.k
+        bound = CUT_TOLERANCE + (ds / 2.0) ** 2 / 2.0 * curvature
+        assert shapely.distance(shapely.points(pts), wheels[other].exterior).min() <= bound * s.k

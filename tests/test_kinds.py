@@ -157,12 +157,10 @@ def test_a_new_kind_finds_the_singular_position_through_the_protocol(monkeypatch
     for structure in (st, _traced(st, 0)):
         motion = analyse(mech, structure, order=1)
         g = structure.groups[0].name
-        # the secant search stops after 16 steps; near a limit position the steps past it are halved
-        # back, so it may stop short of its own test (1e-6 of its 0.05° step): 2.5e-6° from 99.5°
-        # here (1.5e-10° from 99°). Not a derived bound: 1e-5° is 4× that and far below the 0.001°
-        # the warning prints
-        assert motion.singular_distance(g, 1) == pytest.approx(dead - 99.0, abs=1e-5)
-        assert motion.singular_distance(g, 2) == pytest.approx(dead - 99.5, abs=1e-5)
+        # the secant search stops when its step is under 1e-6 of its first (0.05°); it converges
+        # superlinearly, so its error is below that last step: 5e-8°
+        assert motion.singular_distance(g, 1) == pytest.approx(dead - 99.0, abs=1e-6 * 0.05)
+        assert motion.singular_distance(g, 2) == pytest.approx(dead - 99.5, abs=1e-6 * 0.05)
         assert motion.singular_distance(g, 0) is None        # 40° away: beyond the local search
 
 

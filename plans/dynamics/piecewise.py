@@ -7,6 +7,8 @@ or jump of a load (a law's knot, the end of a stroke) is a panel edge, never ins
 
 from __future__ import annotations
 
+import bisect
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -48,8 +50,44 @@ class Piecewise:
         a, b = self.edges[k], self.edges[k + 1]
         t = (2.0 * theta - a - b) / (b - a)
         t = np.clip(t, -REACH, REACH) if self.extend else np.clip(t, -1.0, 1.0)
-        v = legendre.legvander(t, self.coef.shape[1] - 1)
-        return np.einsum("ij,ij->i", v, self.coef[k]).reshape(shape)
+        c = self.coef[k]
+        # Σ_j P_j(t)·c_j, the Legendre recurrence and the sum in a fixed order (element by
+        # element: the same bits on every processor, and the same as :meth:`at`)
+        p0, p1 = np.ones_like(t), t
+        acc = p0 * c[:, 0]
+        if c.shape[1] > 1:
+            acc = acc + p1 * c[:, 1]
+        for j in range(2, c.shape[1]):
+            p0, p1 = p1, (p1 * t * (2 * j - 1) - p0 * (j - 1)) / j
+            acc = acc + p1 * c[:, j]
+        return acc.reshape(shape)
+
+    def at(self, theta: float) -> float:
+        """The value at one θ (rad) on Python floats: bit for bit ``float(self(theta))``, without
+        numpy's per-call cost (an integrator's right-hand side calls it tens of thousands of times)."""
+        edges = self._edges
+        k = min(max(bisect.bisect_right(edges, theta) - 1, 0), len(edges) - 2)
+        a, b = edges[k], edges[k + 1]
+        t = (2.0 * theta - a - b) / (b - a)
+        lim = REACH if self.extend else 1.0
+        t = min(max(t, -lim), lim)
+        c = self._rows[k]
+        p0, p1 = 1.0, t
+        acc = p0 * c[0]
+        if len(c) > 1:
+            acc = acc + p1 * c[1]
+        for j in range(2, len(c)):
+            p0, p1 = p1, (p1 * t * (2 * j - 1) - p0 * (j - 1)) / j
+            acc = acc + p1 * c[j]
+        return acc
+
+    @functools.cached_property
+    def _edges(self) -> list[float]:
+        return self.edges.tolist()
+
+    @functools.cached_property
+    def _rows(self) -> list[list[float]]:
+        return self.coef.tolist()
 
     def between(self, lo: float, hi: float) -> Piecewise:
         """The panels from the edge nearest ``lo`` to the edge nearest ``hi``, the end panels'

@@ -93,8 +93,8 @@ def _equation(machine: MachineDynamics, motor: Motor, lo: float, hi: float, base
     def rhs(t: float, y: np.ndarray) -> np.ndarray:
         th = y[0] - base
         w = y[1]
-        num = float(motor_moment(motor, w)) + float(moment(th)) - 0.5 * float(slope(th)) * w * w
-        return np.array([w, num / (float(inertia(th)) + j)])
+        num = float(motor_moment(motor, w)) + moment.at(th) - 0.5 * slope.at(th) * w * w
+        return np.array([w, num / (inertia.at(th) + j)])
     return rhs
 
 
@@ -226,8 +226,8 @@ def steady_cycle(machine: MachineDynamics, motor: Motor, guess: float, *, rtol: 
     two_pi = 2.0 * math.pi
 
     def de(th: float, e: np.ndarray) -> np.ndarray:
-        w = math.sqrt(max(2.0 * e[0] / (float(machine.inertia(th)) + j), 0.0))
-        return np.array([float(motor_moment(motor, w)) + float(machine.moment(th))])
+        w = math.sqrt(max(2.0 * e[0] / (machine.inertia.at(th) + j), 0.0))
+        return np.array([float(motor_moment(motor, w)) + machine.moment.at(th)])
 
     i0 = float(machine.inertia(0.0)) + j
 

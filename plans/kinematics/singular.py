@@ -13,7 +13,8 @@ posed, and only at the trial drive values, continued from the pose at position i
 
 The search is the secant method on the squared condition figure c² (c ~ √δ at a limit
 position, c ~ δ where branches cross); a trial past a limit position (the group no longer
-assembles) or past a sign change of c is stepped back towards the last good value.
+assembles) or past a sign change of c is first retried just short of itself (SHORT_OF_ROOT),
+then stepped back towards the last good value.
 """
 
 from __future__ import annotations
@@ -24,13 +25,18 @@ from .kinds import GroupSolver, Seed, chain
 from .state import LinkState, Solution
 from .walk import drive_states, step
 
-__all__ = ["distance", "LocalPoser", "FIRST_SHORTENINGS"]
+__all__ = ["distance", "LocalPoser", "FIRST_SHORTENINGS", "SHORT_OF_ROOT"]
 
 #: How often the search's first step (0.05° or 1e-4 × size) is quartered when neither side can
 #: be posed: a few hundredths of a degree from a limit position (where the near-singular warning
 #: begins) a step of 0.05° either passes the limit or lands on the other branch (the pose moves
 #: like the square root of the distance there); 8 quarterings reach 1e-6°.
 FIRST_SHORTENINGS = 9
+#: A secant root that lands past a limit position (c² ≈ k·(L − x) + O((L − x)²): the root lies
+#: past L by O(d²) when the secant's points are d away) is retried this fraction of its step short
+#: of it: posable while that excess is under 1e-3·d, and then 1e-3·d from L, so each such step
+#: takes ~three digits off the distance (halving back, the fallback, takes one bit).
+SHORT_OF_ROOT = 1e-3
 
 
 class LocalPoser:
@@ -132,6 +138,9 @@ def distance(motion: Solution, group: str, i: int) -> float | None:
         if abs(x2 - start) > 20.0 * h + 10.0 * abs(x1 - start):
             return None
         f2 = f(x2)
+        if f2 is None:      # past a limit position, where c² is nearly linear: the root is just short
+            x2 = x1 + (1.0 - SHORT_OF_ROOT) * (x2 - x1)
+            f2 = f(x2)
         tries = 0
         while f2 is None and tries < 30:      # past a limit position: step back towards x1
             x2 = 0.5 * (x1 + x2)
