@@ -132,17 +132,32 @@ def press_without_cycle(folder: Path) -> Path:
     return path
 
 
+def plans_cli(argv: list[str], cwd: Path | None = None):
+    """``plans ARGV`` run in this process (the interpreter's start and numpy's import are a second
+    a run, most of a refusal's cost), in ``cwd`` when given: a ``subprocess.CompletedProcess``
+    with its exit code, stdout and stderr. An exception escapes as it would print a traceback."""
+    import contextlib
+    import io
+    import subprocess
+
+    from plans.cli import main
+
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.chdir(cwd or Path.cwd()), contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        try:
+            code = main([str(a) for a in argv])
+        except SystemExit as exc:             # argparse's usage errors exit as the command would
+            code = exc.code if isinstance(exc.code, int) else 2
+    return subprocess.CompletedProcess(["plans", *argv], code, out.getvalue(), err.getvalue())
+
+
 def refused_line(tmp_path: Path, scene_text: str) -> str:
     """Render ``scene_text`` through the command line; it must be refused — exit 2, one line on
     stderr, no output folder — and that line is returned."""
-    import subprocess
-    import sys
-
     scene = tmp_path / "bad.toml"
     scene.write_text(scene_text, encoding="utf-8")
     out = tmp_path / "out"
-    r = subprocess.run([sys.executable, "-m", "plans", "render", str(scene), "-o", str(out)], capture_output=True,
-                       text=True)
+    r = plans_cli(["render", scene, "-o", out])
     lines = r.stderr.strip().splitlines()
     assert r.returncode == 2 and len(lines) == 1, r.stderr
     assert not out.exists()

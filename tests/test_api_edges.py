@@ -20,6 +20,8 @@ import plans
 from plans import export
 from plans.errors import OutputError
 
+from conftest import plans_cli
+
 ROOT = Path(__file__).resolve().parent.parent
 FOUR_BAR = ROOT / "examples" / "four_bar.toml"
 
@@ -97,8 +99,7 @@ def test_render_never_overwrites_its_own_scene(tmp_path):
     scene = tmp_path / "four_bar.json"               # a scene (TOML text) whose report has its name
     text = FOUR_BAR.read_bytes()
     scene.write_bytes(text)
-    r = subprocess.run([sys.executable, "-m", "plans", "render", "four_bar.json", "-o", "."], cwd=tmp_path,
-                       capture_output=True, text=True)
+    r = plans_cli(["render", "four_bar.json", "-o", "."], cwd=tmp_path)
     assert r.returncode == 2 and "would overwrite the input file" in r.stderr, r.stderr
     assert len(r.stderr.strip().splitlines()) == 1
     assert scene.read_bytes() == text and sorted(p.name for p in tmp_path.iterdir()) == ["four_bar.json"]

@@ -12,13 +12,13 @@ and its ratio, recomputed from the teeth by Willis' formula, is within the toler
 from __future__ import annotations
 
 import math
-import subprocess
-import sys
 from fractions import Fraction
 
 import pytest
 
 from plans.gears.synthesis import synthesize
+
+from conftest import plans_cli
 
 K = 3
 RATIOS = (4, 7.5, 12, 25, 60)
@@ -100,20 +100,18 @@ def test_the_assembly_check_here_can_fail():
 
 def test_reachable_types_find_candidates_and_the_others_say_so(tmp_path):
     assert synthesize(60, "C", K) and not synthesize(60, "A", K)
-    r = subprocess.run([sys.executable, "-m", "plans", "gears", "synthesize", "--ratio", "60", "--type", "A",
-                        "--planets", "3", "-o", str(tmp_path / "out")], capture_output=True, text=True)
+    r = plans_cli(["gears", "synthesize", "--ratio", "60", "--type", "A", "--planets", "3", "-o", tmp_path / "out"])
     assert r.returncode == 0 and "cannot reach" in r.stdout
     assert not (tmp_path / "out").exists()
 
 
 def test_the_best_is_drawn_and_checked(tmp_path):
     out = tmp_path / "out"
-    r = subprocess.run([sys.executable, "-m", "plans", "gears", "synthesize", "--ratio", "12", "--type", "B",
-                        "--planets", "3", "--module", "2", "-o", str(out)], capture_output=True, text=True)
+    r = plans_cli(["gears", "synthesize", "--ratio", "12", "--type", "B", "--planets", "3", "--module", "2", "-o", out])
     assert r.returncode == 0, r.stderr
     svg = out / "synthesis_B_12-gears.svg"
     assert svg.exists()
-    c = subprocess.run([sys.executable, "-m", "plans", "check", str(svg)], capture_output=True, text=True)
+    c = plans_cli(["check", svg])
     assert c.returncode == 0, c.stdout
 
 
@@ -125,10 +123,10 @@ def test_bad_options_are_one_line(args, words, tmp_path):
     base = {"--ratio": "7.5", "--type": "B", "--planets": "3"}
     for k in range(0, len(args), 2):
         base[args[k]] = args[k + 1]
-    cmd = [sys.executable, "-m", "plans", "gears", "synthesize", "-o", str(tmp_path / "o")]
+    cmd = ["gears", "synthesize", "-o", str(tmp_path / "o")]
     for k, v in base.items():
         cmd += [k, v]
-    r = subprocess.run(cmd, capture_output=True, text=True)
+    r = plans_cli(cmd)
     assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1 and words in r.stderr, r.stderr
     assert not (tmp_path / "o").exists()
 
@@ -184,7 +182,6 @@ def test_a_synthesis_scene_draws_the_best_and_lists_the_candidates(tmp_path):
 def test_bad_synthesis_sections_are_one_line(body, words, tmp_path):
     scene = tmp_path / "s.toml"
     scene.write_text("[synthesis]\n" + body, encoding="utf-8")
-    r = subprocess.run([sys.executable, "-m", "plans", "render", str(scene), "-o", str(tmp_path / "o")],
-                       capture_output=True, text=True)
+    r = plans_cli(["render", scene, "-o", tmp_path / "o"])
     assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1 and words in r.stderr, r.stderr
     assert not (tmp_path / "o").exists()

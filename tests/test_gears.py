@@ -8,8 +8,6 @@ from __future__ import annotations
 import json
 import math
 import re
-import subprocess
-import sys
 import tomllib
 from fractions import Fraction
 from pathlib import Path
@@ -19,6 +17,8 @@ import pytest
 import plans
 from plans.checking import inspect_svg
 from plans.layout import measure_layout
+
+from conftest import plans_cli
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples" / "gears"
 TRAINS = ("gear_compound_1_17", "gear_idler_1_18", "planetary_1_21", "differential_1_21", "planetary_type_b",
@@ -226,8 +226,7 @@ def test_bad_trains_are_refused_in_one_line_with_nothing_written(case, tmp_path)
     text, words = BAD[case]
     scene = _bad_scene(tmp_path, text)
     out = tmp_path / "out"
-    r = subprocess.run([sys.executable, "-m", "plans", "render", str(scene), "-o", str(out)],
-                       capture_output=True, text=True)
+    r = plans_cli(["render", scene, "-o", out])
     assert r.returncode == 2, r.stderr
     lines = r.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("plans: error:") and words in lines[0], r.stderr

@@ -13,6 +13,7 @@ digits and primes, or the braced text); with ``digits``, trailing digits are a s
 
 from __future__ import annotations
 
+import functools
 import re
 from dataclasses import dataclass
 
@@ -41,8 +42,10 @@ class Run:
     sub: bool = False
 
 
+@functools.lru_cache(maxsize=1 << 16)
 def runs(label: str, *, digits: bool = False) -> tuple[Run, ...]:
-    """A label split into normal and subscript runs (see the module docstring)."""
+    """A label split into normal and subscript runs (see the module docstring); remembered (a
+    sheet measures the same few hundred labels and rows many times)."""
     out: list[Run] = []
     pos = 0
     for m in _SUB.finditer(label):
@@ -64,6 +67,7 @@ def plain(label: str) -> str:
     return "".join(r.text for r in runs(label))
 
 
+@functools.lru_cache(maxsize=1 << 16)
 def _em(text: str, italic: bool) -> float:
     em, _, _, table = ITALIC if italic else BOOK
     default = UNKNOWN_EM * em
