@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import re
 import sys
 from importlib import resources
 from pathlib import Path
@@ -149,16 +150,17 @@ def _handout(source: str, out: str, quiet: bool, random: str | None, seed: str |
              tolerance: str | None = None) -> int:
     """``plans handout``: variants from a variants file, or ``--random N`` around a base scene;
     every variant solved before anything is written (plans.handout); with ``--moodle`` also
-    the Moodle XML question bank."""
+    the Moodle XML question bank (its path checked with -o's, before anything is computed)."""
     from . import handout as ho   # here: the other commands need none of it
+    from .handout.moodle import check_bank_path, size_warning
 
     check_folder(out)
     if tolerance is not None and moodle is None:
         raise OutputError("--tolerance goes with --moodle FILE.xml (the tolerance of its numerical fields)",
                           key="--tolerance")
     tol = ho.parse_tolerance(tolerance) if tolerance is not None else ho.DEFAULT_TOLERANCE
-    if moodle is not None and not moodle.lower().endswith(".xml"):
-        raise OutputError(f"--moodle names the question bank to write, a .xml file, got {moodle!r}", key="--moodle")
+    if moodle is not None:
+        check_bank_path(moodle, out)
     require_cairo()              # the answer keys are SVG and PDF
     if random is None:
         if seed is not None:
@@ -179,19 +181,26 @@ def _handout(source: str, out: str, quiet: bool, random: str | None, seed: str |
     if moodle is not None:
         refuse_inputs([Path(moodle)], [p for p in (h.base, h.source) if p is not None], option="--moodle")
         asked = [ho.variant_asked(d) for d in drawn]
-        assignments = [ho.assignment_svg(h, d, a) for d, a in zip(drawn, asked)]    # drawn once: bank and folders
-        bank = ho.moodle_xml(h, drawn, asked, tolerance=tol, assignments=assignments)
+        assignments = [ho.assignment_sheets(h, d, a) for d, a in zip(drawn, asked)]   # drawn once: bank and folders
+        firsts = [next(iter(sheets.values())) for sheets in assignments]                 # the bank shows the first
+        bank = ho.moodle_xml(h, drawn, asked, tolerance=tol, assignments=firsts).encode("utf-8")
     bar = ho.Progress(len(drawn), "writing")
     ho.write_handout(h, drawn, out, progress=bar, asked=asked, assignments=assignments)
     bar.close()
     if bank is not None:
-        write_files({Path(moodle).name: bank}, Path(moodle).parent)
+        try:
+            write_files({Path(moodle).name: bank}, Path(moodle).parent)
+        except OutputError as exc:     # checked above: a full disk, or the folder changed meanwhile
+            raise OutputError(exc.message.replace(" -o", " --moodle"), file=moodle, key="--moodle") from None
     if not quiet:
         kept = "the train's conditions kept" if h.train else f"margins |condition| ≥ {ho.margin_text(h)}"
         extra = f", seed {h.seed}, {kept} ({h.redraws} draw{'s' if h.redraws != 1 else ''} rejected and redrawn)" \
             if h.seed is not None else ""
         print(f"wrote {len(drawn)} variants of {h.base.name}{extra} to {out}/ (open {out}/index.html)"
-              + (f"; the Moodle question bank to {moodle} (tolerance ±{tol * 100:g} %)" if bank is not None else ""))
+              + (f"; the Moodle question bank to {moodle} ({len(bank) / 2 ** 20:.2f} MB, tolerance ±{tol * 100:g} %)"
+                 if bank is not None else ""))
+    if bank is not None and (warning := size_warning(len(bank), len(drawn))) is not None:
+        print(f"warning: {moodle}: {warning}", file=sys.stderr)
     for d in drawn:
         for w in d.sheets.warnings:
             print(f"warning: {w}", file=sys.stderr)
@@ -223,13 +232,24 @@ def _version() -> str:
     return __version__
 
 
+#: A number on the command line (``--ratio``, ``--tolerance``, ``--module``): ASCII decimal digits, an
+#: optional sign, point and exponent — no spaces or line breaks, no "nan", "inf" or "1_000" (which
+#: float() would take), since the text also names the files written (synthesis_A_12-gears.svg).
+_DECIMAL = re.compile(r"[+-]?([0-9]+(\.[0-9]*)?|\.[0-9]+)([eE][+-]?[0-9]+)?")
+#: A whole number on the command line (``--planets``).
+_WHOLE = re.compile(r"[+-]?[0-9]+")
+
+
 def _option(value: str, flag: str, kind: type = float) -> float:
-    """A number given on the command line, or a one-line error naming ``flag``."""
-    try:
-        x = kind(value)
-    except ValueError:
-        raise SceneError(f"expected {'a whole number' if kind is int else 'a number'}, got {value!r}", key=flag) \
-            from None
+    """A finite number given on the command line as plain decimal text (``kind`` int: a whole
+    number), or a one-line error naming ``flag``."""
+    whole = kind is int
+    if not (_WHOLE if whole else _DECIMAL).fullmatch(value):
+        raise SceneError(f"expected {'a whole number' if whole else 'a number'} written in digits "
+                         f"(e.g. {'3' if whole else '12 or 7.5'}), got {value!r}", key=flag)
+    x = kind(value)
+    if not math.isfinite(x):
+        raise SceneError(f"{value} is beyond the largest number a double holds; give a finite value", key=flag)
     return x
 
 
@@ -250,7 +270,7 @@ def _synthesize(args: argparse.Namespace) -> int:
         return 0
     check_folder(args.output)
     best = found[0]
-    stem = f"synthesis_{kind}_{args.ratio}".replace(".", "_").replace("-", "m")
+    stem = f"synthesis_{kind}_{args.ratio}".replace(".", "_").replace("-", "m").replace("+", "")
     title = f"Planetary train, type {kind}, i = {float(best.ratio):.6g} ({planets} planets)"
     sheets = render(Scene(title=title, points={}, links={}, sliders=(), drive=None, draw=("gears",),
                           gears=best.train), stem=stem)
@@ -305,9 +325,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     h.add_argument("-o", "--output", default="handout", metavar="DIR")
     h.add_argument("--moodle", metavar="FILE.xml", help="also write a Moodle XML question bank: a category for the "
                    "handout, a Cloze question a variant (the assignment as an image, the data, a numerical field per "
-                   "asked quantity)")
-    h.add_argument("--tolerance", metavar="P%", help="tolerance of the Moodle fields, percent of the exact value "
-                   "(default 2%%)")
+                   "asked quantity); a variant adds about 50 KB, and PHP's default upload limit is 2 MB")
+    h.add_argument("--tolerance", metavar="P%", help="tolerance of the Moodle fields, percent of the exact value, "
+                   "0.01 … 100 (default 2%%)")
     h.add_argument("-q", "--quiet", action="store_true")
     gr = sub.add_parser("gears", help="gear trains: planetary synthesis")
     gsub = gr.add_subparsers(dest="gears_command", required=True)

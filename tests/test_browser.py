@@ -38,6 +38,13 @@ TIMEOUT = 60.0
 PX_PER_MM = 96 / 25.4
 #: A4 in PDF points (Chromium writes 841.92 × 594.96).
 A4_PT = (841.92, 594.96)
+PT_PER_MM = 72 / 25.4
+
+
+def _sheet_order(path: Path) -> tuple[int, str]:
+    """``…-assignment.svg`` before its answer sheets ``…-assignment-2.svg``, ``-3`` …"""
+    tail = path.stem.rsplit("-", 1)[-1]
+    return (int(tail), path.name) if tail.isdigit() else (1, path.name)
 
 
 def _chromium() -> str | None:
@@ -184,7 +191,7 @@ def test_index_in_headless_chromium(tmp_path):
     press = press_without_cycle(tmp_path)        # two positions, three sheets: one page each
     assert main(["handout", str(press), "--random", "2", "--seed", "11", "-o", str(out), "-q"]) == 0
     variants = sorted(p for p in out.iterdir() if p.is_dir())
-    keys = {v.name: sorted(p for p in v.glob("*.svg") if not p.name.endswith("-assignment.svg")) for v in variants}
+    keys = {v.name: sorted(p for p in v.glob("*.svg") if "-assignment" not in p.name) for v in variants}
 
     browser = Browser(exe, tmp_path / "profile")
     try:
@@ -210,9 +217,11 @@ def test_index_in_headless_chromium(tmp_path):
         assert abs(w - mm[0] * PX_PER_MM) <= 1 and abs(h - mm[1] * PX_PER_MM) <= 1, src
         assert dark > 100, f"{src} draws nothing"
 
-    pages = _pages(pdf)
-    assert len(pages) == len(variants) + sum(1 + len(k) for k in keys.values())
-    for w, h in pages[:len(variants)]:          # one A4 landscape page per assignment, first
-        assert (round(w), round(h)) == tuple(round(x) for x in A4_PT)
-    for w, h in pages:
-        assert {round(w), round(h)} == {round(x) for x in A4_PT}
+    # every sheet on a page of its own size (printed at 100 %): the assignments' sheets first,
+    # then, variant by variant, an A4 portrait page of the key's values and the key's sheets
+    pt = lambda svg: tuple(round(x * PT_PER_MM) for x in sheet_size_mm(svg.read_text(encoding="utf-8")))  # noqa: E731
+    assigned = [pt(p) for v in variants for p in sorted(v.glob("*-assignment*.svg"), key=_sheet_order)]
+    portrait = (round(A4_PT[1]), round(A4_PT[0]))
+    pages = [(round(w), round(h)) for w, h in _pages(pdf)]
+    assert pages[:len(assigned)] == assigned
+    assert sorted(pages[len(assigned):]) == sorted([portrait] * len(variants) + [pt(p) for k in keys.values() for p in k])

@@ -24,7 +24,10 @@ def _crank_slider(loads: str, *, draw: str = '["scheme", "velocity", "forces", "
                   angles: str = "[45.0, 120.0]", omega: str = "10.0") -> str:
     text = (EXAMPLES / "crank_slider_forces.toml").read_text(encoding="utf-8")
     head = text.split("[masses.1]")[0].replace("gravity = 9.81  # m/s², acting -y\n", "")
-    head = head.replace("angle = [45.0, 120.0]", f"angle = {angles}").replace("omega = 10.0", f"omega = {omega}")
+    cycle = ("angle = 45.0  # the first of the positions\npositions = 24  # one revolution in steps of 15 degrees: "
+             "the working stroke needs the slider's travel\n")
+    assert cycle in head                 # the example's cycle: its working force follows the slider's travel
+    head = head.replace(cycle, f"angle = {angles}\n").replace("omega = 10.0", f"omega = {omega}")
     return head + loads + f"\n[plans]\ndraw = {draw}\n"
 
 

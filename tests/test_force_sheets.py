@@ -129,14 +129,16 @@ def test_every_short_side_is_in_a_detail_or_listed_negligible(sheets):
 
 
 def test_a_detail_holds_a_run_of_consecutive_sides_stated_with_its_own_scale(sheets):
-    path = sheets["six_link_press_forces-forces-60.svg"]
+    # 240°: the ram presses, its 4 kN working force beside weights and inertia forces of a few N
+    # (at 60° the ram rises: its working force is 0 there)
+    path = sheets["six_link_press_forces-forces-240.svg"]
     root = ET.parse(path).getroot()
     groups = {g.get("id"): g for g in force_groups(root)}
-    main = groups["forces-60-g0-plan"]
-    detail = groups["forces-60-g0-x0-plan"]
+    main = groups["forces-240-g0-plan"]
+    detail = groups["forces-240-g0-x0-plan"]
     assert detail.get("data-group") == main.get("data-group") == "II(4-5)"
     mu, mu_d = float(main.get("data-mu")), float(detail.get("data-mu"))
-    assert text_of(root, "forces-60-g0-dcap0") == f"detail 1, μF = {mu_d:g} N/mm"
+    assert text_of(root, "forces-240-g0-dcap0") == f"detail 1, μF = {mu_d:g} N/mm"
     order = [q for q, *_ in sides(main)]
     run = [q for q, *_ in sides(detail)]
     k = order.index(run[0])
@@ -245,7 +247,8 @@ def test_overlapping_vertex_letters_far_apart_are_counted_and_clean_ones_are_not
 
 def test_a_sheet_like_mains_is_counted():
     """The six-link press at 60° drawn as main drew it: every vertex lettered on its own at
-    μF = 50 N/mm (the working force 80 mm, the weights and inertia forces under 2 mm)."""
+    μF = 50 N/mm (the weights and inertia forces under 2 mm; the ram rises there, so its working
+    force, which acts on the working stroke only, is 0)."""
     from plans.drawing import forces as drawing
 
     scene = next(p for p in EXAMPLES if p.stem == "six_link_press_forces")

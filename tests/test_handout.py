@@ -27,6 +27,8 @@ CYCLE_PRESS = next(p for p in EXAMPLES if p.stem == "six_link_press")   # 12 pos
 #: and pages the tests count.
 PRESS = press_without_cycle(Path(tempfile.mkdtemp(prefix="plans-press-")))
 KEYS = {"angle": "angle", "omega": "omega", "epsilon": "epsilon"}
+#: An assignment's sheets (the assignment, then its answer sheets ``-assignment-2.svg`` …): not keys.
+ASSIGNMENT = re.compile(r"-assignment(-\d+)?\.svg$")
 
 
 def _scene(base: Path, lengths: dict, drive: dict) -> plans.Scene:
@@ -152,7 +154,7 @@ def test_same_seed_same_bytes_other_seed_other_variants(tmp_path, random3):
 
 
 def test_plans_check_passes_on_every_answer_key(random3, capsys):
-    svgs = sorted(str(p) for p in random3.glob("variant-*/*.svg") if not p.name.endswith("-assignment.svg"))
+    svgs = sorted(str(p) for p in random3.glob("variant-*/*.svg") if not ASSIGNMENT.search(p.name))
     assert len(svgs) == 9
     assert main(["check", *svgs]) == 0
     assert "0 of 9 files failed" in capsys.readouterr().out
@@ -217,6 +219,18 @@ def test_bad_random_requests(tmp_path, capsys):
     assert not out.exists()
 
 
+@pytest.mark.parametrize("scene", ["gears/planetary_1_21.toml", "gears/press_drive.toml", "four_bar.toml"])
+def test_a_scene_given_without_random_says_to_add_it(tmp_path, capsys, scene):
+    """A scene (a train alone too, which has no [points] or [drive]) given as if it were a
+    variants file: one line naming the file and the fix (--random N), not "missing base"."""
+    path = EXAMPLES[0].parent / scene
+    out = tmp_path / "out"
+    assert main(["handout", str(path), "-o", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and path.name in err and "is a scene" in err and "--random N" in err, err
+    assert "missing base" not in err and not out.exists()
+
+
 def test_progress_only_on_a_terminal():
     class Tty(io.StringIO):
         def isatty(self) -> bool:
@@ -247,7 +261,9 @@ def test_a_cycle_base_gives_keys_with_the_cycle_sheets(tmp_path):
     direct = plans.render(folder / "variant-01.toml")
     names = {s.name for s in direct}
     assert {"positions", "diagrams", "velocities"} <= names
-    assert {p.name for p in folder.glob("*.svg")} == {s.file for s in direct} | {"variant-01-assignment.svg"}
+    names = {p.name for p in folder.glob("*.svg")}
+    assert {n for n in names if not ASSIGNMENT.search(n)} == {s.file for s in direct}
+    assert "variant-01-assignment.svg" in names
     assert main(["check", *(str(folder / s.file) for s in direct)]) == 0
 
 

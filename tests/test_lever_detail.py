@@ -26,15 +26,18 @@ EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 SVG = "{http://www.w3.org/2000/svg}"
 #: Two ends each rounded to the writer's 0.0005 mm: a drawn length is good to this, mm.
 ROUND_MM = 2.0 * math.sqrt(2.0) * 0.0005
-#: The handout variants whose levers piled labels at the pole (scene, seed, variant).
-CROWDED = (("class3_forces", 11, 3), ("class3_forces", 11, 5), ("six_link_press_forces", 12, 2),
-           ("six_link_press_forces", 12, 5), ("six_link_press_forces", 7, 2))
+#: The handout variants whose levers piled labels at the pole (scene, seed, variant, lever sheet:
+#: the press's variants are cycles, a lever at positions 0 and 6, its working force on the
+#: working stroke only).
+CROWDED = (("class3_forces", 11, 3, "lever"), ("class3_forces", 11, 5, "lever"),
+           ("six_link_press_forces", 12, 1, "lever-120"), ("six_link_press_forces", 12, 4, "lever-20"),
+           ("six_link_press_forces", 7, 2, "lever-25"))
 
 
 @pytest.fixture(scope="module")
 def handouts(tmp_path_factory) -> dict[tuple[str, int], Path]:
     out = {}
-    for scene, seed in sorted({(s, d) for s, d, _ in CROWDED}):
+    for scene, seed in sorted({(s, d) for s, d, *_ in CROWDED}):
         dest = tmp_path_factory.mktemp(scene)
         assert main(["handout", str(EXAMPLES / f"{scene}.toml"), "--random", "6", "--seed", str(seed),
                      "-o", str(dest), "-q"]) == 0
@@ -42,8 +45,8 @@ def handouts(tmp_path_factory) -> dict[tuple[str, int], Path]:
     return out
 
 
-def _lever_svg(handouts, scene: str, seed: int, variant: int) -> Path:
-    return handouts[(scene, seed)] / f"variant-{variant:02d}" / f"variant-{variant:02d}-lever.svg"
+def _lever_svg(handouts, scene: str, seed: int, variant: int, sheet: str = "lever") -> Path:
+    return handouts[(scene, seed)] / f"variant-{variant:02d}" / f"variant-{variant:02d}-{sheet}.svg"
 
 
 def _levers(svg: str) -> dict[str, ET.Element]:
@@ -52,9 +55,9 @@ def _levers(svg: str) -> dict[str, ET.Element]:
     return {g.get("data-detail") or "": g for g in root.iter(f"{SVG}g") if g.get("data-plan") == "lever"}
 
 
-@pytest.mark.parametrize("scene,seed,variant", CROWDED)
-def test_crowded_levers_are_legible_and_pass_check(handouts, scene, seed, variant):
-    path = _lever_svg(handouts, scene, seed, variant)
+@pytest.mark.parametrize("scene,seed,variant,sheet", CROWDED)
+def test_crowded_levers_are_legible_and_pass_check(handouts, scene, seed, variant, sheet):
+    path = _lever_svg(handouts, scene, seed, variant, sheet)
     svg = path.read_text(encoding="utf-8")
     m = measure_layout(svg)
     assert m.clean, m.counts
@@ -71,7 +74,7 @@ def test_the_detail_enlarges_the_pole_region(handouts):
     groups = _levers(svg)
     assert set(groups) == {"", "pole"}
     main_g, detail = groups[""], groups["pole"]
-    caption = "".join(ET.fromstring(svg).find(f".//*[@id='lever-detail-caption']").itertext())
+    caption = "".join(ET.fromstring(svg).find(".//*[@id='lever-detail-caption']").itertext())
     k = int(re.search(r"detail ×(\d+)", caption).group(1))
     mu_v, mu_f = float(main_g.get("data-mu-v")), float(detail.get("data-mu"))
     assert float(detail.get("data-mu-v")) == pytest.approx(mu_v / k, rel=1e-12)
@@ -169,9 +172,9 @@ def test_lever_crowd_needs_two_loaded_places_near_the_pole():
 
 
 def test_a_force_legible_on_the_lever_is_not_drawn_again(handouts):
-    # six-link press, seed 7, variant 2: e (4.9 mm from p) carries F_E = 4000 N, drawn 32 mm
+    # six-link press, seed 7, variant 2 at 25°: e (3.1 mm from p) carries F_E = 4000 N, drawn 32 mm
     # on the lever, and G5, F_in,5 (under 1 mm); the detail redraws these, not F_E
-    svg = _lever_svg(handouts, "six_link_press_forces", 7, 2).read_text(encoding="utf-8")
+    svg = _lever_svg(handouts, "six_link_press_forces", 7, 2, "lever-25").read_text(encoding="utf-8")
     groups = _levers(svg)
     mu = float(groups[""].get("data-mu"))
     drawn = {}

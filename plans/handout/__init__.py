@@ -13,10 +13,16 @@ A *variants file* names a base scene and lists per-variant values::
 
 Every key of a variant is optional (a missing one keeps the base's value). Instead of a file,
 :func:`random_variants` draws N variants around a base scene from ``numpy.random.default_rng(seed)``:
-each length × U(1 − 20 %, 1 + 20 %) to three significant digits, a crank's angle over the turn
-in 5° steps, ω1 from the series 1, 1.5, 2, 2.5, 3, 4, 5, 6, 8 × 10ᵏ within ½…2 × the base's;
-a draw that does not assemble, or whose condition figure (``Motion.sines``) is below
-:data:`MARGIN_SIN` at any asked position in any group, is drawn again.
+the lengths link by link — a bar × U(1 − 20 %, 1 + 20 %) to three significant digits, the
+lengths to the points on its line in the base (a centre of mass on its rod) in their base ratio
+to it, every other length of the link drawn on its own (:func:`.draws.length_plan`) — a crank's
+angle over the turn in 5° steps, ω1 from the series 1, 1.5, 2, 2.5, 3, 4, 5, 6, 8 × 10ᵏ within
+½…2 × the base's (none for a crank the gear train turns); a draw that does not assemble, whose
+condition figure (``Motion.sines``) is below :data:`MARGIN_SIN` at any asked position in any
+group, that changes a link's shape, whose task has nothing to find, or (a forces assignment)
+whose working force does not act at the drawn position (it is off its stroke), is drawn again.
+A variant of a file that changes a link's shape or leaves its task nothing to find is refused
+in one line; so is a base whose variants would all be at rest.
 
 :func:`write_handout` writes, into the output folder, ``variant-NN/`` (the assignment sheet and
 the answer key: every sheet the scene draws, SVG and PDF, the JSON values and the variant's
@@ -40,7 +46,7 @@ and task), :mod:`.index` (``index.html``), :mod:`.moodle` (the question bank) an
 from __future__ import annotations
 
 from .asked import KINDS, Asked, asked, kind_of
-from .assignment import assignment_svg, variant_asked
+from .assignment import assignment_sheets, assignment_svg, variant_asked
 from .draws import random_variants
 from .moodle import DEFAULT_TOLERANCE, cloze_field, moodle_xml, parse_tolerance
 from .solving import group_margins, solve_variant, variant_data, variant_scene, worst_sine
@@ -53,4 +59,4 @@ __all__ = ["MARGIN_SIN", "LENGTH_SPREAD", "ANGLE_STEP_DEG", "SPEED_SERIES", "MAX
            "Variant", "Handout", "Drawn", "read_variants", "read_base", "random_variants", "variant_scene",
            "solve_variant", "write_handout", "Progress", "to_toml", "SPEED_RANGE", "INDEX", "VARIANTS",
            "margin_text", "variant_data", "worst_sine", "group_margins", "KINDS", "Asked", "asked", "kind_of",
-           "assignment_svg", "variant_asked", "DEFAULT_TOLERANCE", "cloze_field", "moodle_xml", "parse_tolerance"]
+           "assignment_svg", "assignment_sheets", "variant_asked", "DEFAULT_TOLERANCE", "cloze_field", "moodle_xml", "parse_tolerance"]

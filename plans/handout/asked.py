@@ -15,8 +15,10 @@ Four kinds of assignment, told by the base scene (:func:`kind_of`):
   constant driving moment M_d (N·m).
 
 A quantity whose exact value is zero (a point on the frame, a translating link's ω, a held
-wheel) is given, not asked. Knows only the scene's values; the report is the JSON dict of
-:meth:`plans.Sheets.report`.
+wheel), or that is zero to rounding (at most :data:`ZERO` × the scale of its kind: M_b at a
+dead position of the loads, M_d of a machine loaded by weights alone), is given, not asked;
+:func:`task_gap` tells a variant left with nothing to find, or without the quantity its task
+names. Knows only the scene's values; the report is the JSON dict of :meth:`plans.Sheets.report`.
 """
 
 from __future__ import annotations
@@ -28,11 +30,14 @@ from typing import Any, Mapping
 from ..errors import SceneError
 from ..scene import Scene
 
-__all__ = ["KINDS", "Asked", "kind_of", "asked", "symbol_html"]
+__all__ = ["KINDS", "ZERO", "TASK_NAMES", "Asked", "kind_of", "asked", "task_gap", "symbol_html"]
 
 #: The kinds of assignment, in the course's order.
 KINDS = ("kinematics", "forces", "gears", "dynamics")
-#: A value below this × the largest of its kind is an exact zero (given, not asked).
+#: A value at most this × the scale of its kind is an exact zero, given (not asked): a computed
+#: value carries a rounding error of a few ulps (~1e-16) of the largest term it is summed from,
+#: times the position's conditioning (at most 1/MARGIN_SIN = 10 in a random variant); 1e-12 is
+#: 10³ above that and 10⁹ below anything a student can draw (0.1 mm on a 100 mm vector).
 ZERO = 1e-12
 
 
@@ -80,12 +85,47 @@ def _norm(v: Any) -> float:
     return math.hypot(float(v[0]), float(v[1]))
 
 
-def _nonzero(items: list[Asked]) -> list[Asked]:
-    """``items`` without those whose value is an exact zero beside the largest of their unit."""
-    big: dict[str, float] = {}
+def _nonzero(items: list[Asked], scale: Mapping[str, float] | None = None) -> list[Asked]:
+    """``items`` without the exact zeros: a value at most ZERO × the scale of its unit (the
+    largest of ``items`` in that unit, or ``scale[unit]`` when larger)."""
+    big = dict(scale or {})
     for a in items:
         big[a.unit] = max(big.get(a.unit, 0.0), abs(a.value))
     return [a for a in items if abs(a.value) > ZERO * big[a.unit]]
+
+
+def _size(pos: Mapping[str, Any]) -> float:
+    """The mechanism's size at a position (m): the diagonal of its points' bounding box."""
+    xy = [(float(d["r"][0]), float(d["r"][1])) for d in pos["points"].values() if "r" in d]
+    if not xy:
+        return 0.0
+    xs, ys = zip(*xy)
+    return math.hypot(max(xs) - min(xs), max(ys) - min(ys))
+
+
+def _kinematic_scales(scene: Scene, pos: Mapping[str, Any]) -> dict[str, float]:
+    """The scale of each kinematic unit at a position: the drive's own (ω1·size, (|ε1| + ω1²)·size,
+    ω1, |ε1| + ω1²; a linear drive's v1 and a1 turned into the same with the size), or the
+    largest value of the unit over every point and link there, when larger. A mechanism at rest
+    has scale 0: every value of it is an exact zero."""
+    size = _size(pos) or 1.0
+    d = scene.drive
+    assert d is not None
+    if d.kind.angular:                      # the report's ω1, ε1 (a crank the gear train turns: the train's)
+        own = pos["links"].get(d.link, {})
+        w, e = abs(float(own.get("omega", d.speed))), abs(float(own.get("epsilon", d.rate)))
+    else:                                   # a slider's v1 (m/s), a1 (m/s²) as a crank's ω1, ε1
+        w, e = abs(d.speed) / size, abs(d.rate) / size
+    scale = {"m/s": w * size, "m/s²": (e + w * w) * size, "rad/s": w, "rad/s²": e + w * w}
+    for data in pos["points"].values():
+        for key, unit in (("v", "m/s"), ("a", "m/s²")):
+            if key in data:
+                scale[unit] = max(scale[unit], _norm(data[key]))
+    for data in pos["links"].values():
+        for key, unit in (("omega", "rad/s"), ("epsilon", "rad/s²")):
+            if key in data:
+                scale[unit] = max(scale[unit], abs(float(data[key])))
+    return scale
 
 
 def _kinematics(scene: Scene, pos: Mapping[str, Any], points: list[str], links: list[str]) -> list[Asked]:
@@ -104,25 +144,34 @@ def _kinematics(scene: Scene, pos: Mapping[str, Any], points: list[str], links: 
         if with_a and "epsilon" in data:
             out.append(Asked(f"ε_{{{n}}}", "rad/s²", f"angular acceleration of link {n}",
                              abs(float(data["epsilon"]))))
-    return _nonzero(out)
+    return _nonzero(out, _kinematic_scales(scene, pos))
 
 
-def _forces(pos: Mapping[str, Any]) -> list[Asked]:
+def _forces(scene: Scene, pos: Mapping[str, Any]) -> list[Asked]:
+    """The reactions (zeros beside the largest |R| given) and the balancing element: M_b is an
+    exact zero at most ZERO × the largest moment it is summed from — |R|·size (an arm is at most
+    the mechanism's size), an inertia couple, a given couple; F_b at most ZERO × the largest |R|."""
     f = pos["forces"]
     out = [Asked(_pair(name), "N", f"reaction in the pair of links {name.replace('-', ' and ')}", _norm(r))
            for name, r in f["reactions"].items()]
+    big = max((a.value for a in out), default=0.0)
     out = _nonzero(out)
     b = f["balance"]
     if "moment" in b:
-        out.append(Asked("M_{b}", "N·m", f"balancing moment on link {b['link']} (counter-clockwise +)",
-                         float(b["moment"])))
+        couples = [abs(float(i["moment"])) for i in f.get("inertia", {}).values() if "moment" in i]
+        couples += [abs(m.value) for m in scene.moments]
+        scale = max([big * _size(pos), *couples])
+        balance = Asked("M_{b}", "N·m", f"balancing moment on link {b['link']} (counter-clockwise +)",
+                        float(b["moment"]))
     else:
-        out.append(Asked("F_{b}", "N", f"balancing force on link {b['link']} at {b.get('at', '')}, along its "
-                         "line (+ along the drawn direction)", float(b["value"])))
-    return out
+        scale = big
+        balance = Asked("F_{b}", "N", f"balancing force on link {b['link']} at {b.get('at', '')}, along its "
+                        "line (+ along the drawn direction)", float(b["value"]))
+    return out + _nonzero([balance], {balance.unit: scale})
 
 
 def _gears(scene: Scene, report: Mapping[str, Any]) -> list[Asked]:
+    """The speeds (zeros beside the largest of the inputs' and theirs given) and the ratio."""
     g = report["gears"]
     train = scene.gears
     assert train is not None
@@ -130,26 +179,36 @@ def _gears(scene: Scene, report: Mapping[str, Any]) -> list[Asked]:
     out = [Asked(f"n_{{{name}}}", "rpm", f"speed of {'carrier' if name in train.carriers else 'wheel'} {name} "
                  f"(+ as link {inputs[0]} turns)", float(s["rpm"]))
            for name, s in g["speeds"].items() if name not in inputs]
-    out = _nonzero(out)
+    out = _nonzero(out, {"rpm": max((abs(n) for _, n in train.inputs), default=0.0)})
     if len(inputs) == 1:
         moving = [n for n in train.names if n not in train.fixed and n != inputs[0]]
         target = next((c for c in train.carriers if c in moving), moving[-1] if moving else None)
         ratio = g["ratios"].get(inputs[0], {}).get(target) if target is not None else None
-        if ratio is not None:
+        if ratio is not None and math.isfinite(float(ratio["value"])) and abs(float(ratio["value"])) > ZERO:
             out.append(Asked(f"i_{{{inputs[0]}{target}}}", "—", f"ratio from link {inputs[0]} to link {target}",
                              float(ratio["value"])))
     return out
 
 
 def _dynamics(report: Mapping[str, Any]) -> list[Asked]:
+    """M_d, an exact zero at most ZERO × the largest |M_r| of the loads over the cycle (a machine
+    loaded by weights alone does no work over its cycle); J_fw, at most ZERO × (max|ΔT|/ω_m² +
+    max I_r)/δ, the size of the terms it is found from; δ reached, at most ZERO (a ratio of speeds)."""
     d = report["cycle"]["dynamics"]
     fw = d["flywheel"]
-    out = [Asked("M_{d}", "N·m", "constant driving moment on the driving link", float(d["constant_moment"]))]
+    moments = max((abs(float(m)) for m in d["reduced_moment"]), default=0.0)
+    out = _nonzero([Asked("M_{d}", "N·m", "constant driving moment on the driving link",
+                          float(d["constant_moment"]))], {"N·m": moments})
     if fw.get("given"):
-        out.append(Asked("δ", "—", "coefficient of speed fluctuation reached", float(d["delta_reached"])))
+        out += _nonzero([Asked("δ", "—", "coefficient of speed fluctuation reached", float(d["delta_reached"]))],
+                        {"—": 1.0})
     else:
-        out.append(Asked("J_{fw}", "kg·m²", f"flywheel's moment of inertia for δ = {fw['delta']:g}",
-                         float(fw["required"])))
+        w2 = float(d["omega_mean"]) ** 2
+        energy = max((abs(float(t)) for t in d["kinetic_energy_change"]), default=0.0)
+        inertia = max((abs(float(i)) for i in d["reduced_inertia"]), default=0.0)
+        scale = (energy / w2 + inertia) / float(fw["delta"]) if w2 > 0.0 and fw["delta"] else 0.0
+        out += _nonzero([Asked("J_{fw}", "kg·m²", f"flywheel's moment of inertia for δ = {fw['delta']:g}",
+                               float(fw["required"]))], {"kg·m²": scale})
     return out
 
 
@@ -157,7 +216,8 @@ def asked(scene: Scene, report: Mapping[str, Any], *, points: list[str] | None =
           links: list[str] | None = None) -> tuple[Asked, ...]:
     """The quantities the assignment of ``scene`` asks, with their exact values from ``report``
     (``points``, ``links``: those a kinematics assignment names; by default every moving point
-    and every link but the frame and the driving one)."""
+    and every link but the frame and the driving one); an exact zero (see :data:`ZERO`) is
+    given, not asked."""
     kind = kind_of(scene)
     if kind == "gears":
         return tuple(_gears(scene, report))
@@ -165,13 +225,43 @@ def asked(scene: Scene, report: Mapping[str, Any], *, points: list[str] | None =
         return tuple(_dynamics(report))
     pos = report["positions"][0]
     if kind == "forces":
-        return tuple(_forces(pos))
+        return tuple(_forces(scene, pos))
     assert scene.drive is not None
     if points is None:
         points = [p for p, d in pos["points"].items() if "v" in d]
     if links is None:
         links = [n for n in pos["links"] if n not in ("0", scene.drive.link)]
     return tuple(_kinematics(scene, pos, points, links))
+
+
+#: The quantity a task of each kind names and must ask (its text states it): the balancing
+#: element of a forces assignment, the flywheel's J or δ of a dynamics one.
+TASK_NAMES = {"forces": ("M_{b}", "F_{b}"), "dynamics": ("J_{fw}", "δ")}
+
+
+def task_gap(scene: Scene, items: tuple[Asked, ...]) -> str:
+    """Why an assignment asking ``items`` cannot be set, and what to change ("" when it can): it
+    asks nothing (a mechanism or a train at rest), or the quantity its task names is an exact
+    zero (a balancing moment at a dead position of the loads, a flywheel of J = 0)."""
+    kind = kind_of(scene)
+    d = scene.drive
+    angular = d is None or d.kind.angular
+    pos, speed, rate = ("angle", "omega", "epsilon") if angular else ("displacement", "velocity", "acceleration")
+    if not items:
+        if kind == "gears":
+            return "nothing to find: every speed is 0 (the input stands); give a nonzero input speed"
+        if kind == "dynamics":
+            return "nothing to find: its loads do no work over the cycle and need no flywheel; give it loads"
+        return (f"nothing to find: every asked quantity is 0 (the mechanism is at rest); give a nonzero {speed} (or "
+                f"{rate})")
+    names = TASK_NAMES.get(kind, ())
+    if names and not any(a.symbol in names for a in items):
+        if kind == "forces":
+            what = "moment M_b" if scene.balance is None or scene.balance.kind == "moment" else "force F_b"
+            return (f"the balancing {what} is 0 at the asked position, to rounding (the loads do no work there), so "
+                    f"the task's answer would be noise; give another {pos}")
+        return "the flywheel's J is 0, to rounding, so the task's answer would be noise; change the loads or δ"
+    return ""
 
 
 def symbol_html(symbol: str) -> str:

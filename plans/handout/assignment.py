@@ -23,7 +23,8 @@ from .asked import Asked, asked, kind_of
 from .solving import variant_data
 from .variants import Drawn, Handout
 
-__all__ = ["assignment_svg", "law_corners", "loads_cells", "task_text", "variant_asked", "given_and_task"]
+__all__ = ["assignment_svg", "law_corners", "loads_cells", "task_text", "variant_asked", "given_and_task",
+           "answers_at", "TYPING"]
 
 
 def _found(d: Drawn) -> tuple[list[str], list[str]]:
@@ -44,7 +45,28 @@ def variant_asked(d: Drawn) -> tuple[Asked, ...]:
 
 
 def _names(asked: tuple[Asked, ...]) -> str:
+    """The asked quantities' symbols, in order: ``v_{A}, v_{B}, ω_{2}``."""
     return ", ".join(a.symbol for a in asked)
+
+
+#: How to type a value in a Moodle field (Moodle's numerical parsing: a "." makes every "," a
+#: thousands separator, a lone "," is read by the site's language, on an English one as a
+#: thousands separator; a German site flags a "." as its thousands separator).
+TYPING = ("Type each value as a plain number with a decimal point (0.5336) or in e-notation (5.336e-1), without a "
+          "unit, spaces or a thousands separator: a comma may be read as one (0,5336 as 5336). Only if Moodle asks "
+          "for the number without the thousands separator (.), type a decimal comma instead (0,5336).")
+
+
+def answers_at(d: Drawn) -> str | None:
+    """The position a linkage's answers are for, the first given one (``φ_{1} = 30°``,
+    ``s = 0.1 m``); ``None`` for a gear train's or a machine's cycle (no one position)."""
+    scene = d.scene
+    if scene.drive is None or kind_of(scene) not in ("kinematics", "forces"):
+        return None
+    x = scene.drive.values[0]
+    if scene.drive.kind.angular:
+        return f"φ_{{{scene.drive.link}}} = {(x % 360.0) + 0.0:g}°"
+    return f"s = {x:g} m"
 
 
 #: A law's point is left out of the task's text when the line through its neighbours passes
@@ -99,8 +121,10 @@ def loads_cells(scene: Scene, unit: str = "m") -> tuple[list[str], list[str]]:
     return cells, laws
 
 
-def task_text(scene: Scene, asked: tuple[Asked, ...], laws: list[str]) -> str:
-    """The task of a forces, dynamics or gears assignment (the kinematics one is the drawing's)."""
+def task_text(scene: Scene, asked: tuple[Asked, ...], laws: list[str], at: str | None = None) -> str:
+    """The task of a forces, dynamics or gears assignment (the kinematics one is the drawing's);
+    ``at``: the position a forces assignment's answers are for, named instead of "the given
+    position" (``φ_{1} = 60° (the first given position)``)."""
     kind = kind_of(scene)
     if kind == "gears":
         return (f"Task: draw the linear- and angular-velocity pictures of the train to scale; find {_names(asked)} "
@@ -109,10 +133,10 @@ def task_text(scene: Scene, asked: tuple[Asked, ...], laws: list[str]) -> str:
     if kind == "forces":
         b = next(a for a in asked if a.symbol in ("M_{b}", "F_{b}"))
         what = "balancing moment" if b.symbol == "M_{b}" else "balancing force"
-        text = (f"Task: at the given position draw the velocity and acceleration plans, find the inertia forces and "
-                f"moments, then, group by group from the last one attached, the reactions in the kinematic pairs by "
-                f"force plans and the {what} {b.symbol} on link {j} (counter-clockwise +); check {b.symbol} by "
-                f"Zhukovsky's lever.")
+        text = (f"Task: at {at or 'the given position'} draw the velocity and acceleration plans, find the inertia "
+                f"forces and moments, then, group by group from the last one attached, the reactions in the kinematic "
+                f"pairs by force plans and the {what} {b.symbol} on link {j} (counter-clockwise +); check {b.symbol} "
+                f"by Zhukovsky's lever.")
     else:
         fw = next(a for a in asked if a.symbol in ("J_{fw}", "δ"))
         aim = ("the flywheel's moment of inertia J_{fw} on link " + j + " that keeps the speed within the given δ"
@@ -138,15 +162,25 @@ def _dynamics_cells(scene: Scene) -> tuple[list[str], str]:
     return cells, position
 
 
-def _kinematics_task(scene: Scene, asked: tuple[Asked, ...]) -> str:
-    plans = " and the acceleration plan" if "acceleration" in scene.draw else ""
-    return (f"Task: draw the velocity plan{plans} at the given position to scale and find {_names(asked)} "
-            "(magnitudes).")
+def _where(d: Drawn) -> tuple[str, str]:
+    """Where a linkage's plans are drawn (the given position, or each of them) and the position
+    its answers are for, named (the first when there are several)."""
+    several = len(d.scene.drive.values) > 1
+    return ("each given position" if several else "the given position",
+            f"{answers_at(d)}{' (the first given position)' if several else ''}")
+
+
+def _kinematics_task(d: Drawn, asked: tuple[Asked, ...]) -> str:
+    """A linkage's kinematics task, naming the position its answers are for."""
+    plans = " and the acceleration plan" if "acceleration" in d.scene.draw else ""
+    where, at = _where(d)
+    return f"Task: draw the velocity plan{plans} at {where} to scale; find {_names(asked)} (magnitudes) at {at}."
 
 
 def given_and_task(h: Handout, d: Drawn, asked: tuple[Asked, ...]) -> tuple[list[str], str]:
     """The given data (cells in the sheets' markup: ``l_{OA} = 0.1 m``) and the task of variant
-    ``d``, as its assignment sheet states them."""
+    ``d`` as its Moodle question states them: the sheet's, naming the position the answers are
+    for, then how to type a value (:data:`TYPING`)."""
     from ..drawing.assignment import given_cells
 
     scene = d.scene
@@ -156,23 +190,36 @@ def given_and_task(h: Handout, d: Drawn, asked: tuple[Asked, ...]) -> tuple[list
         cells += [f"m_{{{w.name}}} = {w.module:g} mm" for w in g.wheels if w.module]
         cells += [f"n_{{{name}}} = {n:g} rpm" for name, n in g.inputs]
         cells += [f"n_{{{name}}} = 0 (held)" for name in g.fixed]
-        return cells, task_text(scene, asked, [])
+        return cells, f"{task_text(scene, asked, [])} {TYPING}"
     lengths = variant_data(h, d.variant).get("lengths")
     if h.kind == "kinematics":
-        return given_cells(scene, lengths), _kinematics_task(scene, asked)
+        return given_cells(scene, lengths), f"{_kinematics_task(d, asked)} {TYPING}"
     report = d.sheets.report
     cells, laws = loads_cells(scene, report.get("cycle", {}).get("output", {}).get("unit", "m"))
     if h.kind == "forces":
-        return given_cells(scene, lengths) + cells, task_text(scene, asked, laws)
+        return given_cells(scene, lengths) + cells, f"{task_text(scene, asked, laws, at=_where(d)[1])} {TYPING}"
     more, _ = _dynamics_cells(scene)
-    return given_cells(scene, lengths, drive=False) + cells + more, task_text(scene, asked, laws)
+    return given_cells(scene, lengths, drive=False) + cells + more, f"{task_text(scene, asked, laws)} {TYPING}"
 
 
 def assignment_svg(h: Handout, d: Drawn, asked: tuple[Asked, ...]) -> str:
-    """The assignment sheet's SVG of variant ``d``."""
+    """The assignment sheet's SVG of variant ``d`` (the first of :func:`assignment_sheets`)."""
+    return _assignment(h, d, asked)[0]
+
+
+def assignment_sheets(h: Handout, d: Drawn, asked: tuple[Asked, ...]) -> dict[str, str]:
+    """Every sheet of variant ``d``'s assignment, file name → SVG text: the assignment sheet
+    (``variant-01-assignment.svg``), then an answer sheet (``variant-01-assignment-2.svg``…)
+    for each batch of framed areas it has no room for (every area holds what the key draws)."""
+    return {f"{d.name}-assignment{'' if k == 0 else f'-{k + 1}'}.svg": svg
+            for k, svg in enumerate(_assignment(h, d, asked))}
+
+
+def _assignment(h: Handout, d: Drawn, asked: tuple[Asked, ...]) -> tuple[str, ...]:
+    """The SVG texts of variant ``d``'s assignment sheets, the assignment sheet first."""
     variant = d.name.replace("variant-", "variant ")
     if h.train:
-        return _train_sheet(d, asked, variant)
+        return (_train_sheet(d, asked, variant),)
     from ..constructions.scheme import scheme
     from ..drawing.assignment import draw_assignment
 
@@ -180,32 +227,86 @@ def assignment_svg(h: Handout, d: Drawn, asked: tuple[Asked, ...]) -> str:
     scene = d.scene
     lengths = variant_data(h, d.variant).get("lengths")
     points, links = _found(d)
+    areas = answer_areas(h, d)
     if h.kind == "kinematics":
         return draw_assignment(lambda mu: scheme(motion, 0, mu), scene, variant=variant, points=points, links=links,
-                               lengths=lengths)
+                               lengths=lengths, areas=areas)
     report = d.sheets.report
     cells, laws = loads_cells(scene, report.get("cycle", {}).get("output", {}).get("unit", "m"))
     task = task_text(scene, asked, laws)
     if h.kind == "forces":
-        areas = [("velocity", "Velocity plan (pole p)", "μ_V = ________ (m/s)/mm"),
-                 ("acceleration", "Acceleration plan (pole π)", "μ_a = ________ (m/s²)/mm"),
-                 ("forces", "Force plans", "μ_F = ________ N/mm"),
-                 ("lever", "Zhukovsky's lever", "μ_F = ________ N/mm")]
         return draw_assignment(lambda mu: scheme(motion, 0, mu), scene, variant=variant, points=points,
                                links=links, lengths=lengths, extra=cells, task=task, areas=areas)
     more, position = _dynamics_cells(scene)
-    areas = [("diagrams", "Diagrams M_{r}(φ), A(φ), ΔT(φ), I_{r}(φ)", "μ_φ = ________ rad/mm"),
-             ("wittenbauer", "Wittenbauer's diagram ΔT(I_{r})", "μ_T = ________ J/mm")]
     return draw_assignment(lambda mu: scheme(motion, 0, mu), scene, variant=variant, points=points, links=links,
                            lengths=lengths, extra=cells + more, task=task, areas=areas, position=position,
                            drawn_at=float(report["positions"][0]["angle"]))
 
 
+#: A linkage assignment's areas: what the key's drawing is marked (``data-plan``), the area's
+#: name and the scale the student writes in.
+_AREAS = {"velocity": ("velocity", "Velocity plan (pole p)", "μ_V = ________ (m/s)/mm"),
+          "acceleration": ("acceleration", "Acceleration plan (pole π)", "μ_a = ________ (m/s²)/mm"),
+          "forces": ("force", "Force plans", "μ_F = ________ N/mm"),
+          "lever": ("lever", "Zhukovsky's lever", "μ_F = ________ N/mm")}
+#: The dynamics diagrams drawn one above the other on a common φ axis (``data-diagram``).
+_DIAGRAMS = ("M", "A", "T", "I")
+
+
+def answer_areas(h: Handout, d: Drawn) -> list:
+    """The framed areas of variant ``d``'s linkage assignment (:class:`plans.drawing.assignment.Area`),
+    each with the size of what its key draws there (mm; a detail, an enlarged piece, left out):
+    kinematics, the velocity and acceleration plans the scene draws at each position; forces,
+    those at the first position, each group's force plan and Zhukovsky's lever; dynamics, the
+    diagrams M, A, ΔT, I together and Wittenbauer's diagram."""
+    import re
+
+    from ..drawing.assignment import Area, drawings
+    from ..pipeline.sheets.page import sheet_suffix
+
+    motion, sheets = d.sheets.motion, d.sheets.sheets
+
+    def held(name: str, what: tuple[str, ...], pages: bool = False) -> list:
+        found = [n for n in sheets if n == name or pages and re.fullmatch(re.escape(name) + r"-\d+", n)]
+        return [b for n in found for w, b in drawings(sheets[n].svg) if w in what]
+
+    if h.kind == "dynamics":
+        boxes = held("dynamics", _DIAGRAMS)        # one above the other: the room of all of them
+        union = ((max(b.x1 for b in boxes) - min(b.x0 for b in boxes),
+                  max(b.y1 for b in boxes) - min(b.y0 for b in boxes)),) if boxes else ()
+        return [Area("diagrams", "Diagrams M_{r}(φ), A(φ), ΔT(φ), I_{r}(φ)", "μ_φ = ________ rad/mm", union),
+                Area("wittenbauer", "Wittenbauer's diagram ΔT(I_{r})", "μ_T = ________ J/mm",
+                     tuple(_sizes(held("dynamics", ("wittenbauer",)))))]
+    drive = d.scene.drive
+    if h.kind == "forces":
+        kinds, positions = ("velocity", "acceleration", "forces", "lever"), range(1)
+    else:
+        kinds = tuple(k for k in ("velocity", "acceleration") if k in d.scene.draw) or ("velocity",)
+        positions = range(len(motion))
+    out = []
+    for i in positions:
+        suffix = sheet_suffix(motion, i)
+        v = float(motion.values[i])
+        at = "" if len(motion) == 1 else \
+            f", φ_{{{drive.link}}} = {v % 360.0 + 0.0:g}°" if drive.kind.angular else f", s = {v:g} m"
+        for kind in kinds:
+            what, name, scale = _AREAS[kind]
+            out.append(Area(kind, name + at, scale, tuple(_sizes(held(kind + suffix, (what,), kind == "forces"))),
+                            suffix))
+    return out
+
+
+def _sizes(boxes: list) -> list[tuple[float, float]]:
+    """Width and height of each box, mm."""
+    return [(b.x1 - b.x0, b.y1 - b.y0) for b in boxes]
+
+
 def _train_sheet(d: Drawn, asked: tuple[Asked, ...], variant: str) -> str:
     """A gear train's assignment: its gear sheet without the pictures, the speeds left empty
-    but for the inputs and the held links."""
+    but for the inputs and the held links; the pictures' room framed where the key draws them."""
     from ..constructions.gears import gear_sheet
     from ..drawing import Style
+    from ..drawing.assignment import add_frames, gear_frames
     from ..drawing.gears import draw_gears
     from ..drawing.svg import Heading
 
@@ -216,5 +317,7 @@ def _train_sheet(d: Drawn, asked: tuple[Asked, ...], variant: str) -> str:
              + ("; every wheel's module " + ", ".join(f"m_{{{w.name}}} = {w.module:g} mm" for w in scene.gears.wheels)
                 if all(w.module for w in scene.gears.wheels) else "") + ".",
              task_text(scene, asked, []))
-    return draw_gears(gear_sheet(train), Heading(scene.title, f"Assignment, {variant}", inputs), ident="assignment",
-                      style=Style(), notes=notes, given=given)
+    svg = draw_gears(gear_sheet(train), Heading(scene.title, f"Assignment, {variant}", inputs), ident="assignment",
+                     style=Style(), notes=notes, given=given)
+    key = next((s.svg for s in d.sheets if s.name == "gears"), None)
+    return svg if key is None else add_frames(svg, gear_frames(key, svg), "assignment", Style())

@@ -1,30 +1,34 @@
 """``index.html`` of a handout: every variant's assignment and answer key, for the screen and
-for printing on A4.
+for printing.
 
 On screen: a cover (title, base scene, seed and margin, a table of the variants' data with
-links), then every page. In print the cover is left out; each variant's assignment is one A4
-landscape page (the A3 landscape sheet at 70.7 %: the same proportions), then, variant by
-variant, a page with the key's values and one page per key sheet (A4 landscape or portrait
-as the sheet is). The sheets are ``<img>`` of the SVG files beside it (relative paths, so the
-folder can be moved); the text holds no date or absolute path: the same handout gives the same
-bytes.
+links), then every page. In print the cover is left out; each sheet prints at 100 % on a page
+of its own size (a named CSS page, ``@page s420x297 { size: 420mm 297mm; margin: 0 }``, the
+size read from the sheet's SVG), so that every text keeps its drawn height: the assignments
+first (the assignment sheet, then its answer sheets), then, variant by variant, an A4 page with
+the key's values and a page per key sheet. The sheets are ``<img>`` of the SVG files beside it
+(relative paths, so the folder can be moved); the text holds no date or absolute path: the same
+handout gives the same bytes.
 
-Knows :mod:`.asked` (an asked quantity), :mod:`.variants` (the handout, its solved variants, the margins' wording) and the
-export's sheet size; must not import the solving, the random draws, the writing or the command
-line.
+Knows :mod:`.asked` (an asked quantity), :mod:`.variants` (the handout, its solved variants, the
+margins' wording) and the export's sheet size; must not import the solving, the random draws,
+the writing or the command line.
 """
 
 from __future__ import annotations
 
 import html
 import json
-from typing import Sequence
+from typing import Mapping, Sequence
 
 from ..export import sheet_size_mm
 from .asked import Asked, symbol_html
 from .variants import Drawn, Handout, margin_text
 
-__all__ = ["index_html", "CSS"]
+__all__ = ["index_html", "CSS", "page_css", "ASSIGNMENT_MM"]
+
+#: The assignment sheet's size when its SVG is not given, mm (a linkage's: A3 landscape).
+ASSIGNMENT_MM = (420.0, 297.0)
 
 CSS = """\
 body { font-family: "DejaVu Serif", serif; margin: 1em; color: #000; }
@@ -35,20 +39,35 @@ td.n { text-align: right; font-variant-numeric: tabular-nums; }
 img.sheet { display: block; max-width: 100%; height: auto; border: 1px solid #ccc; }
 section.page { margin: 2em 0; }
 @page { size: A4 portrait; margin: 10mm; }
-@page wide { size: A4 landscape; margin: 8mm; }
 @media print {
   body { margin: 0; }
   .cover { display: none; }
   section.page { margin: 0; break-after: page; page-break-after: always; break-inside: avoid; }
   section.page:last-of-type { break-after: auto; page-break-after: auto; }
-  section.wide { page: wide; }
-  img.sheet { border: none; width: auto; max-width: 100%; }
-  section.wide img.sheet { max-height: 184mm; }
-  section.tall img.sheet { max-height: 268mm; }
-  h2 { font-size: 10pt; margin: 0 0 2mm; }
-  table { font-size: 8pt; }
+  section.sheet { overflow: hidden; }
+  section.sheet h2 { display: none; }
+  img.sheet { border: none; max-width: none; }
+  h2 { font-size: 12pt; margin: 0 0 2mm; }
+  table { font-size: 10pt; }          /* DejaVu Serif: capitals 0.729 em, 2.57 mm */
 }
 """
+
+
+def _size_name(size: tuple[float, float]) -> str:
+    """The named page of a sheet ``size`` (mm): ``s420x297``, ``s241p8x297`` (p for a point)."""
+    return "s" + "x".join(f"{x:g}".replace(".", "p") for x in size)
+
+
+def page_css(sizes: Sequence[tuple[float, float]]) -> str:
+    """The print rules of the sheets' pages: a named page per size (mm), as large as the sheet
+    and without margins, and the sheet drawn at that size: at 100 %."""
+    out = []
+    for w, h in sorted(set(sizes)):
+        n = _size_name((w, h))
+        out.append(f"@page {n} {{ size: {w:g}mm {h:g}mm; margin: 0; }}\n"
+                   f"@media print {{ section.{n} {{ page: {n}; width: {w:g}mm; height: {h:g}mm; }}\n"
+                   f"  section.{n} img.sheet {{ width: {w:g}mm; height: {h:g}mm; }} }}\n")
+    return "".join(out)
 
 
 def _e(text: object) -> str:
@@ -59,10 +78,9 @@ def _g(x: float) -> str:
     return f"{x:.4g}"
 
 
-def _shape(svg: str) -> str:
-    """``wide`` for a landscape sheet, ``tall`` for a portrait one (its page's orientation)."""
-    size = sheet_size_mm(svg)
-    return "wide" if size is None or size[0] >= size[1] else "tall"
+def _size(svg: str | None, default: tuple[float, float] = ASSIGNMENT_MM) -> tuple[float, float]:
+    """A sheet's size in mm, from its SVG (``default`` when it gives none)."""
+    return (sheet_size_mm(svg) if svg is not None else None) or default
 
 
 def _values_table(report: dict, angular: bool, drive: str) -> str:
@@ -120,11 +138,14 @@ def _train_rows(h: Handout, drawn: Sequence[Drawn]) -> tuple[str, list[str]]:
 
 
 def index_html(h: Handout, drawn: Sequence[Drawn], *, margin: float | None = None,
-               asked: Sequence[Sequence[Asked]] = ()) -> str:
+               asked: Sequence[Sequence[Asked]] = (), assignments: Sequence[Mapping[str, str]] = ()) -> str:
     """The index page's text (see the module docstring); ``asked``: what each variant's
-    assignment asks, with its key's values (listed first on its key's page)."""
+    assignment asks, with its key's values (listed first on its key's page); ``assignments``:
+    each variant's assignment sheets (file name → SVG text, the assignment sheet first), when
+    given (else its one sheet ``<name>-assignment.svg``, a gear train's the size of its key's
+    gear sheet, a linkage's :data:`ASSIGNMENT_MM`)."""
     if h.train:
-        return _page(h, drawn, margin, asked, *_train_rows(h, drawn))
+        return _page(h, drawn, margin, asked, assignments, *_train_rows(h, drawn))
     drive = str(h.base_data["drive"]["link"])
     sym = (f"φ<sub>{_e(drive)}</sub>, °", f"ω<sub>{_e(drive)}</sub>, rad/s", f"ε<sub>{_e(drive)}</sub>, rad/s²") \
         if h.angular else ("s, m", "v, m/s", "a, m/s²")
@@ -136,14 +157,25 @@ def index_html(h: Handout, drawn: Sequence[Drawn], *, margin: float | None = Non
         cells = "".join(f'<td class="n">{_length(d, n, h):g}</td>' for n in names)
         rows.append(cells + f'<td class="n">{", ".join(f"{x:g}" for x in dv.values)}</td>'
                     f'<td class="n">{dv.speed:g}</td><td class="n">{dv.rate:g}</td>')
-    return _page(h, drawn, margin, asked, head, rows)
+    return _page(h, drawn, margin, asked, assignments, head, rows)
 
 
-def _page(h: Handout, drawn: Sequence[Drawn], margin: float | None, asked: Sequence[Sequence[Asked]], head: str,
-          rows: list[str]) -> str:
+def _assignment_sheets(d: Drawn, given: Mapping[str, str] | None) -> list[tuple[str, tuple[float, float]]]:
+    """Variant ``d``'s assignment sheets: file name and size (mm) of each."""
+    if given:
+        return [(name, _size(svg)) for name, svg in given.items()]
+    gears = next((s.svg for s in d.sheets if s.name == "gears"), None) if d.sheets.train is not None else None
+    return [(f"{d.name}-assignment.svg", _size(gears))]
+
+
+def _page(h: Handout, drawn: Sequence[Drawn], margin: float | None, asked: Sequence[Sequence[Asked]],
+          assignments: Sequence[Mapping[str, str]], head: str, rows: list[str]) -> str:
     drive = "" if h.train else str(h.base_data["drive"]["link"])
+    tasks = [_assignment_sheets(d, assignments[k] if k < len(assignments) else None) for k, d in enumerate(drawn)]
+    sizes = [size for sheets in tasks for _, size in sheets] + [_size(s.svg) for d in drawn for s in d.sheets]
     out = ["<!DOCTYPE html>", '<html lang="en">', "<head>", '<meta charset="utf-8">',
-           f"<title>{_e(h.title)} — handout, {len(drawn)} variants</title>", f"<style>\n{CSS}</style>", "</head>",
+           f"<title>{_e(h.title)} — handout, {len(drawn)} variants</title>",
+           f"<style>\n{CSS}{page_css(sizes)}</style>", "</head>",
            "<body>", '<section class="cover">', f"<h1>{_e(h.title)}: {len(drawn)} variants</h1>",
            f"<p>Base scene: <code>{_e(h.base.name)}</code> (copied beside this page); the variants: "
            f'<a href="variants.toml">variants.toml</a>.</p>']
@@ -159,29 +191,34 @@ def _page(h: Handout, drawn: Sequence[Drawn], margin: float | None, asked: Seque
                    f"sine (class II and III; plans warns below 0.01, 0 is singular); a class IV group or a drive "
                    f"inside the chain keeps half the base's own smallest figure (σ<sub>min</sub>/σ<sub>max</sub>). "
                    f"Here: {_e(margin_text(h))}.</p>")
-    out.append("<p>Printing (A4): the assignments come first, one a page; then each variant's answer key: its "
-               "values, then one page a sheet.</p>")
+    out.append("<p>Printing: every sheet prints at 100 % on a page of its own size (A3 or A4, as the sheet is; "
+               "print at the actual size, without fitting to the page), so that its text keeps its drawn height. "
+               "The assignments come first, each sheet a page; then each variant's answer key: its values on A4, "
+               "then one page a sheet.</p>")
     out += ["<table>", f"<tr><th>variant</th>{head}<th>assignment</th><th>answer key</th></tr>"]
     for d, cells in zip(drawn, rows):
         n = _e(d.name)
         out.append(f'<tr><td><a href="#{n}">{n}</a></td>{cells}<td><a href="{n}/{n}-assignment.pdf">PDF</a></td>'
                    f'<td><a href="#{n}-key">values</a>, <a href="{n}/{n}.json">JSON</a></td></tr>')
     out += ["</table>", "</section>"]
-    for d in drawn:
+    for d, sheets in zip(drawn, tasks):
         n = _e(d.name)
-        out += [f'<section class="page wide assignment" id="{n}">', f"<h2>{_e(d.name)} — assignment</h2>",
-                f'<img class="sheet" src="{n}/{n}-assignment.svg" alt="{n}: assignment sheet">', "</section>"]
+        for k, (file, size) in enumerate(sheets):
+            what, anchor = ("assignment", f' id="{n}"') if k == 0 else (f"answer sheet {k + 1}", "")
+            out += [f'<section class="page sheet {_size_name(size)} assignment"{anchor}>',
+                    f"<h2>{_e(d.name)} — {what}</h2>",
+                    f'<img class="sheet" src="{n}/{_e(file)}" alt="{n}: {what}">', "</section>"]
     for k, d in enumerate(drawn):
         n = _e(d.name)
         report = json.loads(d.sheets.json)
-        out += [f'<section class="page tall key" id="{n}-key">', f"<h2>{_e(d.name)} — answer key: values</h2>",
+        out += [f'<section class="page values key" id="{n}-key">', f"<h2>{_e(d.name)} — answer key: values</h2>",
                 _asked_table(asked[k]) if k < len(asked) else "",
                 _values_table(report, h.angular, drive) if report.get("positions") else "",
                 f'<p>Files: <a href="{n}/{n}.json">{n}.json</a>, <a href="{n}/{n}.toml">{n}.toml</a> (its scene).</p>',
                 "</section>"]
         for sheet in d.sheets:
             f = _e(sheet.file)
-            out += [f'<section class="page {_shape(sheet.svg)} key-sheet">',
+            out += [f'<section class="page sheet {_size_name(_size(sheet.svg))} key-sheet">',
                     f"<h2>{_e(d.name)} — answer key: {_e(sheet.name)}</h2>",
                     f'<img class="sheet" src="{n}/{f}" alt="{n}: {_e(sheet.name)}">', "</section>"]
     out += ["</body>", "</html>", ""]

@@ -1,20 +1,27 @@
 """A handout as a Moodle XML question bank (``plans handout … --moodle quiz.xml``).
 
-One ``category`` question names the handout's category (``$course$/top/<title>``); then one
-Cloze (``multianswer``) question a variant, whose question text (HTML in CDATA) holds:
+One ``category`` question names the handout's category (``top/<title>``: in the bank the import
+is made into; ``$course$/top/…`` would send the questions to the course's default bank on
+Moodle 5); then one Cloze (``multianswer``) question a variant, whose question text (HTML in
+CDATA) holds:
 
-- the assignment sheet as an image, embedded as ``<file name="variant-01-assignment.png"
-  path="/" encoding="base64">`` and shown by ``<img src="@@PLUGINFILE@@/variant-01-assignment.png">``;
-- the given data and the task, as text;
+- the assignment sheet as an image, a 256-colour palette PNG (under half the RGBA one's size),
+  embedded as ``<file name="variant-01-assignment.png" path="/" encoding="base64">`` and shown
+  by ``<img src="@@PLUGINFILE@@/variant-01-assignment.png">``;
+- the given data and the task, as text, with how to type a number and the position the fields
+  are for (the first given one);
 - one NUMERICAL field a quantity the assignment asks (:mod:`.asked`):
-  ``{1:NUMERICAL:=-52.2255506526:1.04451101305}`` — the exact value as Python's shortest
-  round-trip decimal, and an absolute tolerance = ``tolerance`` × |value| (Moodle's Cloze
-  NUMERICAL takes an absolute, "nominal", tolerance: a response r is right when
-  |r − value| ≤ tolerance + 10⁻¹⁴·max(1, |value|)).
+  ``{1:NUMERICAL:=-52.2256:1.04452}`` — the exact value to :data:`ANSWER_DIGITS` significant
+  digits (what Moodle's review shows as the correct answer) and an absolute tolerance
+  ``tolerance`` × |value| + the rounding, rounded up: every response within ``tolerance`` of the
+  exact value is right (Moodle's Cloze NUMERICAL takes an absolute, "nominal", tolerance t:
+  a response r is right when |r − a| ≤ t + 10⁻¹⁴·max(t, |a|)).
 
 Import in Moodle: Question bank → Import → "Moodle XML format", choose the file, keep "Get
 category from file" ticked; the questions land in a category named after the handout, one
 per variant (add them to a quiz by "random question from category" to give each student one).
+A bank above :data:`UPLOAD_LIMIT` (PHP's default ``upload_max_filesize``) is refused by a
+default server: make fewer variants a bank.
 
 Knows :mod:`.asked`, :mod:`.assignment`, :mod:`.variants` and the export (the PNG); must not
 import the writing, the random draws or the command line.
@@ -24,40 +31,116 @@ from __future__ import annotations
 
 import base64
 import html
+import io
 import math
+import os
+from decimal import ROUND_CEILING, Decimal
+from pathlib import Path
 from typing import Sequence
 
 from ..errors import OutputError
 from ..export import svg_to_png
 from .asked import Asked, symbol_html
-from .assignment import assignment_svg, given_and_task
+from .assignment import answers_at, assignment_svg, given_and_task
 from .variants import Drawn, Handout
 
-__all__ = ["DEFAULT_TOLERANCE", "PNG_DPI", "parse_tolerance", "cloze_field", "moodle_xml"]
+__all__ = ["DEFAULT_TOLERANCE", "MIN_TOLERANCE", "ANSWER_DIGITS", "PNG_DPI", "UPLOAD_LIMIT", "parse_tolerance",
+           "answer_text", "cloze_field", "check_bank_path", "size_warning", "moodle_xml"]
 
 #: The default relative tolerance of every field (2 %).
 DEFAULT_TOLERANCE = 0.02
+#: The smallest relative tolerance (0.01 %): Moodle keeps an answer to 14 digits and adds
+#: 10⁻¹⁴ of slack, and a field's answer is rounded to ANSWER_DIGITS (5·10⁻⁶ relative at most).
+MIN_TOLERANCE = 1e-4
+#: Significant digits of a field's answer.
+ANSWER_DIGITS = 6
 #: The embedded assignment sheet's resolution (A3: 1654 × 1169 pixels).
 PNG_DPI = 100.0
+#: PHP's default ``upload_max_filesize`` (2M), bytes: a larger bank is refused by a default server.
+UPLOAD_LIMIT = 2 * 1024 * 1024
 
 
 def parse_tolerance(text: str) -> float:
-    """A ``--tolerance`` value in percent (``2%`` or ``2``) as a fraction, 0 < t < 1."""
+    """A ``--tolerance`` value in percent (``2%`` or ``2``) as a fraction, MIN_TOLERANCE ≤ t < 1."""
     raw = text.strip().removesuffix("%").strip()
     try:
         value = float(raw)
     except ValueError:
         raise OutputError(f"--tolerance is a percentage of the exact value, e.g. 2%, got {text!r}",
                           key="--tolerance") from None
-    if not math.isfinite(value) or not 0.0 < value < 100.0:
-        raise OutputError(f"--tolerance must lie between 0 and 100 %, got {text!r}; e.g. 2%", key="--tolerance")
+    if not math.isfinite(value) or not MIN_TOLERANCE * 100.0 <= value < 100.0:
+        raise OutputError(f"--tolerance must lie between {MIN_TOLERANCE * 100:g} % and 100 % (Moodle keeps 14 digits "
+                          f"of an answer, so a smaller one is not met reliably), got {text!r}; e.g. 2%",
+                          key="--tolerance")
     return value / 100.0
 
 
+def answer_text(value: float) -> str:
+    """``value`` to :data:`ANSWER_DIGITS` significant digits (``1.21548``, ``-52.2256``, ``1.5e-05``)."""
+    return f"{value:.{ANSWER_DIGITS}g}"
+
+
+def _up(x: float) -> str:
+    """``x`` ≥ 0 rounded up to :data:`ANSWER_DIGITS` significant digits."""
+    if x == 0.0:
+        return "0"
+    d = Decimal(x)       # exact: the float's own value
+    up = d.quantize(Decimal(1).scaleb(d.adjusted() - ANSWER_DIGITS + 1), rounding=ROUND_CEILING)
+    return f"{float(up):.{ANSWER_DIGITS}g}"      # the same digits (a carry's 10.0000 as 10), read back ≥ x
+
+
 def cloze_field(a: Asked, tolerance: float, weight: int = 1) -> str:
-    """The Cloze NUMERICAL field of ``a``: its exact value and the absolute tolerance
-    ``tolerance`` × |value|."""
-    return f"{{{weight}:NUMERICAL:={a.value!r}:{tolerance * abs(a.value)!r}}}"
+    """The Cloze NUMERICAL field of ``a``: its value to :data:`ANSWER_DIGITS` digits, and the
+    absolute tolerance ``tolerance`` × |value| widened by that rounding (rounded up)."""
+    answer = answer_text(a.value)
+    return f"{{{weight}:NUMERICAL:={answer}:{_up(tolerance * abs(a.value) + abs(a.value - float(answer)))}}}"
+
+
+def check_bank_path(bank: str, out: str) -> None:
+    """Refuse, before anything is written, a ``--moodle`` path the bank cannot be written to:
+    not a .xml name, a folder, below a file or an unwritable folder, or the ``-o`` folder (or
+    one of its parents)."""
+    if not bank.lower().endswith(".xml"):
+        raise OutputError(f"--moodle names the question bank to write, a .xml file, got {bank!r}", key="--moodle")
+    path = Path(bank)
+    if path.is_dir() or (path.exists() and not path.is_file()):
+        raise OutputError("is a folder (or another non-file), not the bank's file; give --moodle a file name, e.g. "
+                          f"{path / 'bank.xml'}", file=bank, key="--moodle")
+    target, folder = path.resolve(), Path(out).resolve()
+    if target == folder or target in folder.parents:
+        raise OutputError(f"-o {out} makes this path a folder (the handout's, or one above it); give --moodle a file "
+                          f"of its own, e.g. {Path(out) / 'bank.xml'}", file=bank, key="--moodle")
+    probe = path.parent       # the nearest existing folder up the bank's path: a file there, or no permission
+    while not probe.exists() and probe.parent != probe:
+        probe = probe.parent
+    if probe.exists() and not probe.is_dir():
+        raise OutputError(f"lies below the file {probe}, not in a folder; give --moodle a path in a folder",
+                          file=bank, key="--moodle")
+    if not os.access(probe, os.W_OK | os.X_OK):
+        raise OutputError(f"no permission to write in {probe}; choose another --moodle or change its permissions",
+                          file=bank, key="--moodle")
+
+
+def size_warning(size: int, count: int) -> str | None:
+    """A one-line warning when a bank of ``size`` bytes and ``count`` variants is above
+    :data:`UPLOAD_LIMIT`, with the number of variants a bank that fits."""
+    if size <= UPLOAD_LIMIT:
+        return None
+    fits = max(1, count * UPLOAD_LIMIT // size)
+    return (f"the question bank is {size / 2 ** 20:.1f} MB, above the 2 MB PHP upload limit (upload_max_filesize) of "
+            f"a default Moodle server: make fewer variants per bank (about {fits} fit), or raise the server's limit")
+
+
+def _palette_png(png: bytes) -> bytes:
+    """An RGBA PNG as a 256-colour palette PNG on white (the sheets' lines, greys and few tints
+    keep their exact colours; max-coverage quantisation), its resolution kept. Byte-stable."""
+    from PIL import Image   # cairosvg's own dependency
+
+    rgba = Image.open(io.BytesIO(png)).convert("RGBA")
+    flat = Image.alpha_composite(Image.new("RGBA", rgba.size, (255, 255, 255, 255)), rgba).convert("RGB")
+    out = io.BytesIO()
+    flat.quantize(256, method=Image.Quantize.MAXCOVERAGE).save(out, "PNG", dpi=(PNG_DPI, PNG_DPI))
+    return out.getvalue()
 
 
 def _cdata(text: str) -> str:
@@ -67,16 +150,18 @@ def _cdata(text: str) -> str:
 def _question(h: Handout, d: Drawn, asked: Sequence[Asked], tolerance: float, svg: str) -> list[str]:
     """Variant ``d``'s Cloze question, its assignment sheet ``svg`` embedded as a PNG."""
     image = f"{d.name}-assignment.png"
-    png = base64.b64encode(svg_to_png(svg, PNG_DPI)).decode("ascii")
+    png = base64.b64encode(_palette_png(svg_to_png(svg, PNG_DPI))).decode("ascii")
     cells, task = given_and_task(h, d, tuple(asked))
+    at = answers_at(d)
     rows = "".join(f"<tr><td>{symbol_html(a.symbol)}</td><td>{cloze_field(a, tolerance)}</td><td>{html.escape(a.unit)}"
                    f"</td><td>{html.escape(a.what)}</td></tr>" for a in asked)
+    head = f"your value at {symbol_html(at)}" if at else "your value"
     body = (f"<p><strong>{html.escape(h.title)}, {html.escape(d.name.replace('-', ' '))}</strong></p>"
             f'<p><img src="@@PLUGINFILE@@/{image}" alt="{html.escape(d.name)}: assignment sheet" '
             f'style="max-width: 100%; height: auto;"></p>'
             f"<p>Given: {'; '.join(symbol_html(c) for c in cells)}.</p>"
             f"<p>{symbol_html(task)}</p>"
-            f"<table><tr><th>quantity</th><th>your value</th><th>unit</th><th></th></tr>{rows}</table>"
+            f"<table><tr><th>quantity</th><th>{head}</th><th>unit</th><th></th></tr>{rows}</table>"
             f"<p>Each value is accepted within ±{tolerance * 100:g} % of the exact one.</p>")
     name = f"{h.title}: {d.name}"
     return ['  <question type="cloze">',
@@ -99,9 +184,9 @@ def moodle_xml(h: Handout, drawn: Sequence[Drawn], asked: Sequence[Sequence[Aske
     if assignments is None:
         assignments = [assignment_svg(h, d, tuple(a)) for d, a in zip(drawn, asked)]
     name = f"{h.title} ({h.base.name}" + (f", seed {h.seed}" if h.seed is not None else "") + ")"
-    category = "$course$/top/" + name.replace("/", "-")     # a "/" would open a subcategory
+    category = "top/" + name.replace("/", "-")     # a "/" would open a subcategory
     out = ['<?xml version="1.0" encoding="UTF-8"?>', "<quiz>",
-           f"  <!-- plans handout: {len(drawn)} variants of {html.escape(h.base.name)} -->",
+           f"  <!-- plans handout: {len(drawn)} variants -->",     # no file name: "--" may not stand in a comment
            '  <question type="category">',
            f"    <category><text>{html.escape(category, quote=False)}</text></category>",
            f'    <info format="html"><text>{_cdata(f"<p>{html.escape(h.title)}: {len(drawn)} variants made by plans.</p>")}</text></info>',

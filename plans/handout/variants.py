@@ -40,6 +40,9 @@ MAX_VARIANTS = 999
 #: Draws tried for one random variant before giving up.
 MAX_TRIES = 200
 
+#: The tables only a scene has (a linkage, a gear train, a gear pair, a synthesis): a file with
+#: one of them and no base is a scene given where a variants file was expected.
+_SCENE_KEYS = {"points", "links", "drive", "gears", "gear_pair", "synthesis"}
 _DRIVE_KEYS = {True: ("angle", "omega", "epsilon"), False: ("displacement", "velocity", "acceleration")}
 
 
@@ -136,9 +139,9 @@ def read_variants(path: str | Path) -> Handout:
     f = str(path)
     data = parse_toml(read_text(path, what="variants file"), f)
     if "base" not in data:
-        if "points" in data and "drive" in data:
+        if _SCENE_KEYS & set(data):
             raise SceneError("is a scene, not a variants file: add --random N to draw N variants around it, or "
-                             'write a variants file with base = "<this scene>" and [[variant]] tables', file=f)
+                             f'write a variants file with base = "{path.name}" and [[variant]] tables', file=f)
         raise SceneError('missing base: name the base scene, e.g. base = "six_link_press.toml" (a path relative '
                          "to this file)", file=f, key="base")
     extra = sorted(str(k) for k in set(data) - {"base", "title", "variant"})

@@ -11,12 +11,12 @@ from __future__ import annotations
 import sys
 import time
 from pathlib import Path
-from typing import Callable, Sequence, TextIO
+from typing import Callable, Mapping, Sequence, TextIO
 
 from ..export import convert, output_names
 from ..output import check_folder, refuse_inputs, write_files
 from .asked import Asked
-from .assignment import assignment_svg, variant_asked
+from .assignment import assignment_sheets, variant_asked
 from .index import index_html
 from .solving import variant_data
 from .toml_text import to_toml, toml_value
@@ -52,10 +52,10 @@ def _variants_file(h: Handout, base_name: str) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _folder_names(d: Drawn) -> list[str]:
+def _folder_names(d: Drawn, sheets: Mapping[str, str]) -> list[str]:
     """Every file name of variant ``d``'s folder: the key's sheets (SVG, PDF), its JSON, the
-    assignment (SVG, PDF) and the variant's scene file (none may write over an input)."""
-    return output_names({**d.sheets.files, f"{d.name}-assignment.svg": "", f"{d.name}.toml": ""}, ("svg", "pdf"))
+    assignment's ``sheets`` (SVG, PDF) and the variant's scene file (none may write over an input)."""
+    return output_names({**d.sheets.files, **dict.fromkeys(sheets, ""), f"{d.name}.toml": ""}, ("svg", "pdf"))
 
 
 def _base_name(h: Handout) -> str:
@@ -96,33 +96,35 @@ class Progress:
 
 def write_handout(h: Handout, drawn: Sequence[Drawn], out: str | Path, *,
                   progress: Callable[[int, str], None] | None = None,
-                  asked: Sequence[tuple[Asked, ...]] | None = None, assignments: Sequence[str] | None = None
-                  ) -> list[Path]:
+                  asked: Sequence[tuple[Asked, ...]] | None = None,
+                  assignments: Sequence[Mapping[str, str]] | None = None) -> list[Path]:
     """Write every variant's folder, ``variants.toml``, the base scene's copy and ``index.html``
     into ``out``. Each folder is written all or nothing (:meth:`plans.Sheets.save`); an error
     removes what this call wrote before it. ``asked``, ``assignments``: what each variant asks
-    and its assignment sheet (SVG text), when already found. Returns the paths written."""
+    and its assignment's sheets (:func:`~.assignment.assignment_sheets`: file name → SVG text),
+    when already found. Returns the paths written."""
     out = Path(out)
     check_folder(out)
     base_name = _base_name(h)
     inputs = [p for p in (h.base, h.source) if p is not None]
-    refuse_inputs([out / n for n in (VARIANTS, base_name, INDEX)]
-                  + [out / d.name / n for d in drawn for n in _folder_names(d)], inputs)
-    written: list[Path] = []
     if asked is None:
         asked = [variant_asked(d) for d in drawn]
+    if assignments is None:
+        assignments = [assignment_sheets(h, d, a) for d, a in zip(drawn, asked)]
+    refuse_inputs([out / n for n in (VARIANTS, base_name, INDEX)]
+                  + [out / d.name / n for d, sheets in zip(drawn, assignments) for n in _folder_names(d, sheets)],
+                  inputs)
+    written: list[Path] = []
     try:
         for k, d in enumerate(drawn, 1):
             folder = out / d.name
-            svg = assignment_svg(h, d, asked[k - 1]) if assignments is None else assignments[k - 1]
-            extra = {f"{d.name}-assignment.svg": svg}
             written += d.sheets.save(folder, formats="svg,pdf")
-            written += write_files({**convert(extra, ("svg", "pdf")),
+            written += write_files({**convert(dict(assignments[k - 1]), ("svg", "pdf")),
                                     f"{d.name}.toml": _scene_file(h, d)}, folder)
             if progress:
                 progress(k, d.name)
         top = {VARIANTS: _variants_file(h, base_name), base_name: h.base_text,
-               INDEX: index_html(h, drawn, margin=h.margin, asked=asked)}
+               INDEX: index_html(h, drawn, margin=h.margin, asked=asked, assignments=assignments)}
         written += write_files(top, out)
     except BaseException:
         for p in reversed(written):
