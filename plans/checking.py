@@ -64,6 +64,10 @@ A group with ``data-plan="bound"`` holds vectors drawn at their points of applic
 scheme (Koshel's V_S1, V_S2 drawn from S1, S2 in the plan's scale): each is measured for
 length and direction, but its ends are no plan images, so it adds no closure equation.
 
+A gear sheet's angular-velocity picture (``data-plan="gear-omega"``) is checked further by
+:mod:`plans.checking_gears`: each ray starts at its pole, runs parallel to its link's velocity
+line and ends where the link's ω ends, and the declared scales agree, μω = μV/(μl·h).
+
 This module holds the checks of a file (:func:`inspect_svg`, :func:`check_svg`). Beside it:
 :mod:`plans.checking_report` (what is found: :class:`Measurement`, :class:`Closure`,
 :class:`Check`, :class:`SvgReport`), :mod:`plans.checking_read` (reading tagged vectors back)

@@ -20,7 +20,7 @@ from .scales import SERIES, extent_of, fitting_scale
 from .scheme import Scheme, scheme
 from .. import linalg as la
 
-__all__ = ["PositionsSheet", "Trace", "Cell", "VelocitiesSheet", "positions_sheet", "velocities_sheet",
+__all__ = ["PositionsSheet", "Trace", "Tick", "Cell", "VelocitiesSheet", "positions_sheet", "velocities_sheet",
            "value_table", "shifted", "GRID_MM", "TABLE_ROW_MM"]
 
 #: The drawing area of an A3 landscape sheet that the velocity plans and their table share, mm.
@@ -44,11 +44,26 @@ class Trace:
 
 
 @dataclass(frozen=True)
+class Tick:
+    """Position ``index`` of a slider's point on its frame guide: ``at`` (mm) on the guide,
+    ``axis`` the guide's unit direction as drawn (its hatching on the right of it), ``side``
+    +1 (labelled on the left of the axis) when the point moves along the axis there, −1 when
+    it moves back: each stroke's positions are numbered on a side of their own."""
+
+    index: int
+    at: tuple[float, float]
+    axis: tuple[float, float]
+    side: float
+
+
+@dataclass(frozen=True)
 class PositionsSheet:
     """The mechanism at N positions (``poses``: one scheme each, position i = poses[i]), the
     output link's two extreme positions (``extremes``, smallest displacement first, each with
     its crank angle in ``extreme_angles``), trajectories, the crank's pivot and tip, the output
-    link and its point, and ``stroke``: the output's travel between the extremes (m, or rad)."""
+    link and its point, and ``stroke``: the output's travel between the extremes (m, or rad).
+    A slider on the frame has ``ticks``: its positions marked on the guide (its block is drawn
+    at the extremes only, as a textbook draws the positions of a ram)."""
 
     mu_l: float
     poses: tuple[Scheme, ...]
@@ -62,6 +77,7 @@ class PositionsSheet:
     point: str
     kind: str
     stroke: float | None
+    ticks: tuple[Tick, ...] = ()
 
 
 def positions_scale(dense: Motion) -> float:
@@ -87,7 +103,28 @@ def positions_sheet(motion: Motion, extremes: Motion | None, dense: Motion, *, o
     ext_angles = () if extremes is None else tuple(float(v) % 360.0 for v in extremes.values)
     return PositionsSheet(mu_l=mu_l, poses=poses, angles=angles, extremes=ext, extreme_angles=ext_angles,
                           traces=traces, pivot=mech.drive.pivot, tip=mech.drive.tip, output=output, point=point,
-                          kind=kind, stroke=stroke)
+                          kind=kind, stroke=stroke, ticks=_ticks(motion, output, poses))
+
+
+def _ticks(motion: Motion, output: str, poses: tuple[Scheme, ...]) -> tuple[Tick, ...]:
+    """The positions of slider ``output`` on its frame guide (none for another output): each
+    position's pin, and its side by the sense of its velocity along the guide (the sense of
+    its next step when the velocities are not known, or the point stands)."""
+    mech = motion.mechanism
+    pr = next((pr for pr in mech.prismatics if pr.slider == output and pr.guide == FRAME
+               and len(mech.links[output].points) == 1), None)
+    if pr is None:
+        return ()
+    u = np.asarray(pr.direction, dtype=float)
+    u = u / float(la.norm(u))
+    at = motion.position(pr.label)
+    s = np.array([float(la.dot(p, u)) for p in at])
+    v = np.array([float(la.dot(w, u)) for w in motion.velocity(pr.label)]) if motion.order >= 1 else np.zeros(len(s))
+    n = len(s)
+    step = np.array([s[(i + 1) % n] - s[i] for i in range(n)])
+    sense = np.where(v != 0.0, v, step)
+    axis = (float(u[0]), float(u[1]))
+    return tuple(Tick(i, poses[i].points[pr.label], axis, 1.0 if sense[i] >= 0.0 else -1.0) for i in range(n))
 
 
 # --- the velocity plans of every position --------------------------------------------------

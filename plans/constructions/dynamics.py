@@ -126,32 +126,56 @@ def dynamics_diagrams(machine: MachineDynamics) -> DynamicsDiagrams:
     else:
         work, work_g, other, sym = -loads, -loads_g, line, ("A_r", "A_d")
         t_g = line_g + loads_g
-    m = make_graph("M", "M_r", "N·m", top=0.0, x=x, values=moment, at=at, height=GRAPH_MM)
+    m = _graph("M", "M_r", "N·m", top=0.0, x=x, values=moment, at=at, height=GRAPH_MM)
     top = m.origin[1] + m.low - GAP_MM
     lo_ = min(0.0, float(np.min(work)), float(np.min(work_g)), float(np.min(other)))
     hi_ = max(0.0, float(np.max(work)), float(np.max(work_g)), float(np.max(other)))
     pole = fitting_scale(max(hi_ - lo_, 1e-300) / GRAPH_MM / (m.mu * mu_phi), 1.0)     # the series' next H
-    a = make_graph("A", "A", "J", top=top, x=x, values=work, at=at, graphical=(at, work_g), extra=other,
-                   extra_symbol=sym[1], mu=m.mu * mu_phi * pole)
+    a = _graph("A", "A", "J", top=top, x=x, values=work, at=at, graphical=(at, work_g), extra=other,
+               extra_symbol=sym[1], mu=m.mu * mu_phi * pole)
     top = a.origin[1] + a.low - GAP_MM
-    t = make_graph("T", "ΔT", "J", top=top, x=x, values=energy, at=at, graphical=(at, t_g), height=GRAPH_MM)
+    t = _graph("T", "ΔT", "J", top=top, x=x, values=energy, at=at, graphical=(at, t_g), height=GRAPH_MM)
     top = t.origin[1] + t.low - GAP_MM
-    i = make_graph("I", "I_r", "kg·m²", top=top, x=x, values=inertia, at=at, height=GRAPH_MM)
+    i = _graph("I", "I_r", "kg·m²", top=top, x=x, values=inertia, at=at, height=GRAPH_MM)
     witt = _wittenbauer(machine, inertia, energy, at[:-1])
     return DynamicsDiagrams(mu_phi=mu_phi, length=length, positions=n, pole=pole, loads_drive=loads_drive,
                             graphs=(m, a, t, i), works=sym, wittenbauer=witt)
 
 
+def _graph(quantity: str, symbol: str, unit: str, *, top: float, x: np.ndarray, values: np.ndarray,
+           at: np.ndarray, graphical: tuple[np.ndarray, np.ndarray] | None = None, extra: np.ndarray | None = None,
+           extra_symbol: str = "", height: float = GRAPH_MM, mu: float | None = None) -> Graph:
+    """:func:`~.diagrams.make_graph`, or for a quantity that is 0 over the whole cycle (I_r of a
+    machine without masses or rotor, M_r of one without loads) its flat line on the φ axis at a
+    unit scale (a range of 0 has no scale to fit, nor ticks to number but 0)."""
+    series = [values] + ([graphical[1]] if graphical is not None else []) + ([extra] if extra is not None else [])
+    if any(np.any(v != 0.0) for v in series):
+        return make_graph(quantity, symbol, unit, top=top, x=x, values=values, at=at, graphical=graphical,
+                          extra=extra, extra_symbol=extra_symbol, height=height, mu=mu)
+    mu = 1.0 if mu is None or not mu > 0.0 else mu
+    y = float(top)
+    exact = tuple((float(px), y) for px in x)
+    at_pos = tuple((float(x[k]), y, 0.0) for k in at)
+    drawn = () if graphical is None else tuple((float(x[k]), y, 0.0) for k in graphical[0])
+    more = () if extra is None else exact
+    return Graph(quantity, symbol, unit, mu, (0.0, y), 0.0, 0.0, exact, at_pos, drawn, ((0.0, y),), 0.0, more,
+                 extra_symbol)
+
+
 def _wittenbauer(machine: MachineDynamics, inertia: np.ndarray, energy: np.ndarray, at: np.ndarray) -> Wittenbauer:
     i_lo, i_hi = float(np.min(inertia)), float(np.max(inertia))
-    spread = max(i_hi - i_lo, 1e-9 * max(abs(i_hi), 1e-300))
+    spread = i_hi - i_lo
+    if not spread > 1e-9 * abs(i_hi):   # I_r constant (no masses: 0, or the rotor's): the I axis spans the
+        swing = float(np.max(energy) - np.min(energy)) / machine.omega_m ** 2     # swing's inertia at ω_m
+        spread = swing if swing > 0.0 else max(abs(i_hi), 1.0)
     i0 = 0.0
     if i_lo > 0.5 * spread:       # the I axis starts at a round value below the curve, not at 0
         step = nice_step(spread)
         i0 = math.floor(i_lo / step) * step
-    mu_i = fitting_scale(i_hi - i0 if i_hi > i0 else spread, WITTENBAUER_MM[0] - 15.0)
+    i_end = i0 + max(i_hi - i0, spread)       # i_hi; with I_r constant, the spread past it
+    mu_i = fitting_scale(i_end - i0, WITTENBAUER_MM[0] - 15.0)
     x_of = lambda v: (v - i0) / mu_i          # noqa: E731
-    width = x_of(i_hi) + 15.0
+    width = x_of(i_end) + 15.0
     wheel = machine.flywheel
     raw = []
     values = [0.0, float(np.min(energy)), float(np.max(energy))]
@@ -165,7 +189,7 @@ def _wittenbauer(machine: MachineDynamics, inertia: np.ndarray, energy: np.ndarr
         values += list(ends)
         raw.append((which, k, it, et, x_end, ends))
     lo, hi = min(values), max(values)
-    mu_t = fitting_scale(max(hi - lo, 1e-300), WITTENBAUER_MM[1])
+    mu_t = fitting_scale(hi - lo if hi > lo else 1.0, WITTENBAUER_MM[1])
     tangents = tuple(Tangent(which, math.degrees(math.atan(k * mu_i / mu_t)), k, (x_of(it), et / mu_t),
                              (0.0, ends[0] / mu_t), (x_end, ends[1] / mu_t), ends[0])
                      for which, k, it, et, x_end, ends in raw)
@@ -175,8 +199,8 @@ def _wittenbauer(machine: MachineDynamics, inertia: np.ndarray, energy: np.ndarr
         inertia_w = segment / (machine.omega_m ** 2 * wheel.delta) - i0
     curve = tuple((float(x_of(v)), float(e / mu_t)) for v, e in zip(inertia, energy))
     pts = tuple((float(x_of(inertia[k])), float(energy[k] / mu_t), float(inertia[k]), float(energy[k])) for k in at)
-    i_ticks = tuple((v, x_of(v)) for v in ticks_for(i0, i_hi, 4) if x_of(v) >= -1e-9)
-    t_ticks = tuple((v, v / mu_t) for v in ticks_for(lo, hi, 8))
+    i_ticks = tuple((v, x_of(v)) for v in ticks_for(i0, i_end, 4) if x_of(v) >= -1e-9)
+    t_ticks = tuple((v, v / mu_t) for v in ticks_for(lo, hi, 8)) if hi > lo else ((0.0, 0.0),)
     return Wittenbauer(mu_i=mu_i, mu_t=mu_t, i0=i0, curve=curve, at_positions=pts, i_ticks=i_ticks, t_ticks=t_ticks,
                        width=width, low=lo / mu_t, high=hi / mu_t, tangents=tangents, segment=segment,
                        inertia=inertia_w)
@@ -207,9 +231,9 @@ def startup_diagrams(start: Startup) -> StartupDiagrams:
     x = start.t / mu_t
     n = len(start.t)
     at = np.unique(np.round(np.linspace(0, n - 1, STARTUP_ORDINATES + 1)).astype(int))
-    w = make_graph("w", "ω_1", "rad/s", top=0.0, x=x, values=start.omega, at=at, height=STARTUP_MM[1])
-    m = make_graph("M", "M", "N·m", top=w.origin[1] + w.low - GAP_MM - 6.0, x=x, values=start.motor, at=at,
-                   extra=start.load, extra_symbol="M_r", height=STARTUP_MM[1])
+    w = _graph("w", "ω_1", "rad/s", top=0.0, x=x, values=start.omega, at=at, height=STARTUP_MM[1])
+    m = _graph("M", "M", "N·m", top=w.origin[1] + w.low - GAP_MM - 6.0, x=x, values=start.motor, at=at,
+               extra=start.load, extra_symbol="M_r", height=STARTUP_MM[1])
     ticks = tuple((tv, tv / mu_t) for tv in ticks_for(0.0, start.t_end, 10) if tv / mu_t <= x[-1] + 1e-9)
     steady = None
     if start.steady is not None:

@@ -15,7 +15,9 @@ the same radius axis, and below that the angular-velocity picture (Smirnov's met
   parallel to each link's line cuts the line at h·tan ψ_L = h·ω_L·μl/μV from the foot of the
   pole, so ω_L = segment·μω with μω = μV/(μl·h).
 
-Without modules the wheels are drawn with a nominal module of 1 mm (``nominal``).
+Without modules the wheels are drawn with a nominal module of 1 mm (``nominal``). A passive
+planet written out (a copy of another on its carrier) is drawn in the end view only, at its
+place among the equally spaced planets, and named in a note; its speed is in the table.
 
 Reads a solved train (plans.gears); nothing here draws.
 """
@@ -165,6 +167,7 @@ class GearSheet:
     nominal: bool                       # drawn with a nominal module (no module given)
     table: tuple[SpeedRow, ...] = ()
     end: EndView | None = None          # the planets seen along the axis (trains with carriers)
+    notes: tuple[str, ...] = ()         # the passive planets written out, one line each
 
     @property
     def mu_omega(self) -> float:
@@ -249,6 +252,8 @@ def gear_sheet(analysis: GearAnalysis) -> GearSheet:
     plane = _planes(analysis)
     omega = {link.name: speeds.omega(link.name) for link in s.links}
     link_of = {m: s.link_of(m) for m in train.names}
+    copies = {p.name for p in s.passive}                 # drawn in the end view only
+    drawn = [link for link in s.links if link.name not in copies]
     carrier_of_link = {link.name: link.axis_on for link in s.links}
 
     def v_at(link: str, y: float) -> float:
@@ -269,10 +274,11 @@ def gear_sheet(analysis: GearAnalysis) -> GearSheet:
     x_of = {n: PLANE_MM * k for n, k in plane.items()}
     wheels = tuple(WheelMark(name=w.name, link=link_of[w.name].name, x=x_of[w.name],
                              y=height[link_of[w.name].name] * mm, r=radius[w.name] * mm, internal=w.internal,
-                             fixed=link_of[w.name].fixed, mirror=w.on is not None) for w in train.wheels)
+                             fixed=link_of[w.name].fixed, mirror=w.on is not None) for w in train.wheels
+                   if link_of[w.name].name not in copies)
     x_max = max(x_of.values())
     shafts, carriers = [], []
-    for link in s.links:
+    for link in drawn:
         xs = [x_of[n] for n in link.members if n in x_of]
         if link.carrier:
             planets = [x_of[n] for p in s.planets_of(next(m for m in link.members if m in train.carriers))
@@ -293,7 +299,7 @@ def gear_sheet(analysis: GearAnalysis) -> GearSheet:
         carriers.append(CarrierMark(name=c, path=((x_arm, 0.0), (x_arm, arm), (max(planets) + PLANE_MM / 2, arm))))
     axis_x = x_max + PLANE_MM + GAP_MM + VELOCITY_MAX_MM * 0.5
     lines = []
-    for link in s.links:
+    for link in drawn:
         y0, y1 = spans[link.name]
         w = omega[link.name]
         zero = None if w == 0 else (height[link.name] - (v_at(link.name, height[link.name]) / w)) * mm
@@ -301,6 +307,8 @@ def gear_sheet(analysis: GearAnalysis) -> GearSheet:
                               end=(axis_x + v_at(link.name, y1) / mu_v, y1 * mm), omega=w, zero=zero))
     pitch = []
     for m in s.meshes:
+        if m.link_a in copies or m.link_b in copies:
+            continue
         y = _pitch_height(m, radius, height, train)
         v = v_at(m.link_a, y)
         pitch.append(PitchVector(a=m.a, b=m.b, v=v, tail=(axis_x, y * mm), head=(axis_x + v / mu_v, y * mm)))
@@ -310,26 +318,49 @@ def gear_sheet(analysis: GearAnalysis) -> GearSheet:
     pole = (axis_x, line_y - h)
     segments = tuple(OmegaSegment(link=link.name, omega=omega[link.name], tail=(axis_x, line_y),
                                   head=(axis_x + h * omega[link.name] * mu_l / mu_v, line_y))
-                     for link in s.links if not link.fixed)
+                     for link in drawn if not link.fixed)
     return GearSheet(mu_l=mu_l, mu_v=mu_v, h=h, wheels=wheels, shafts=tuple(shafts), carriers=tuple(carriers),
                      axis_x=axis_x, lines=tuple(lines), pitch=tuple(pitch), pole=pole, omega=segments,
                      nominal=nominal, end=_end_view(analysis, radius, height, mu_l, wheels),
                      table=tuple(SpeedRow(n, train.wheel(n).teeth if n not in train.carriers else None,
-                                                           float(speeds.rpm[n]), speeds.omega(n)) for n in train.names))
+                                                           float(speeds.rpm[n]), speeds.omega(n)) for n in train.names),
+                     notes=_passive_notes(analysis))
+
+
+def _passive_notes(analysis: GearAnalysis) -> tuple[str, ...]:
+    """One line naming the passive planets written out and W counted with them, or none."""
+    s = analysis.speeds.structure
+    if not s.passive:
+        return ()
+    named = ", ".join(f"{p.name} repeats {p.copy_of} on {p.carrier}" for p in s.passive)
+    return (f"passive planets: {named} (shown in the end view); counted with them, {s.formula_with_passive}",)
 
 
 def _end_view(analysis: GearAnalysis, radius: dict[str, float], height: dict[str, float], mu_l: float,
               wheels: tuple[WheelMark, ...]) -> EndView | None:
-    """The end view left of the side view (see :class:`EndView`), or None without carriers."""
+    """The end view left of the side view (see :class:`EndView`), or None without carriers. Each
+    planet link (a passive copy too) stands at its distance and angle from the geometry (or at its
+    carrier's arm, a copy 2π·i/sets on from the planet it repeats), turned by 2π·j/planets."""
     s = analysis.speeds.structure
     train = s.train
     if not train.carriers:
         return None
+    g = analysis.geometry
     planet_wheels = {w.name for w in train.wheels if w.on is not None}
     central = [w for w in train.wheels if w.on is None and any(
         (a == w.name and b in planet_wheels) or (b == w.name and a in planet_wheels) for a, b in train.meshes)]
-    reach_m = max([radius[w.name] for w in central] + [height[s.link_of(w.name).name] + radius[w.name]
-                                                        for w in train.wheels if w.on is not None])
+    place: dict[str, tuple[float, float]] = {}          # planet link → (distance m, angle rad from the top)
+    for c in train.carriers:
+        planets = s.planets_of(c)
+        sets = train.planets * (1 + max((len(s.copies(p.name)) for p in planets), default=0))
+        for p in planets:
+            d = g.planet_arm[p.name] / 1000.0 if g is not None and p.name in g.planet_arm else height[p.name]
+            t = g.planet_angle.get(p.name, 0.0) if g is not None else 0.0
+            place[p.name] = (d, t)
+            for i, copy in enumerate(s.copies(p.name), start=1):
+                place[copy] = (d, t + 2.0 * math.pi * i / sets)
+    reach_m = max([radius[w.name] for w in central] + [place[s.link_of(w.name).name][0] + radius[w.name]
+                                                        for w in train.wheels if s.link_of(w.name).name in place])
     factor = next((f for f in END_FACTORS if reach_m / (f * mu_l) <= END_MAX_MM / 2), END_FACTORS[-1])
     mu = factor * mu_l                  # the side view's scale, or a simple fraction of it
     mm = 1.0 / mu
@@ -342,14 +373,14 @@ def _end_view(analysis: GearAnalysis, radius: dict[str, float], height: dict[str
         circles.append((w.name, (cx, cy), radius[w.name] * mm, w.internal))
     k = train.planets
     for c in train.carriers:
-        arm = height[s.planets_of(c)[0].name] * mm if s.planets_of(c) else 0.0
         for j in range(k):
-            t = math.pi / 2 + 2.0 * math.pi * j / k
-            p = (cx + arm * math.cos(t), cy + arm * math.sin(t))
-            arms.append(((cx, cy), p))
-            for w in train.wheels:
-                if w.on == c:
-                    circles.append((w.name, p, radius[w.name] * mm, w.internal))
+            for link in s.planets_of(c, passive=True):
+                d, t0 = place[link.name]
+                t = math.pi / 2 + t0 + 2.0 * math.pi * j / k
+                p = (cx + d * mm * math.cos(t), cy + d * mm * math.sin(t))
+                arms.append(((cx, cy), p))
+                for n in link.members:
+                    circles.append((n, p, radius[n] * mm, train.wheel(n).internal))
     return EndView(mu=mu, centre=(cx, cy), circles=tuple(circles), arms=tuple(arms))
 
 

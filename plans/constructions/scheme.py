@@ -24,7 +24,8 @@ from ..scene import FRAME, DriveKind
 from .scheme_drive import Cylinder, DriveArrow, clearance, cylinders, drive_arrows
 from .. import linalg as la
 
-__all__ = ["Scheme", "Block", "Guide", "Arc", "scheme", "BLOCK_MM", "HEAD_MM", "SENSE_HEAD_MM"]
+__all__ = ["Scheme", "Block", "Guide", "Arc", "scheme", "BLOCK_MM", "HEAD_MM", "SENSE_HEAD_MM", "ARC_MAX_MM",
+           "REFERENCE_OVERRUN_MM"]
 
 #: Slider block size along and across its guide, mm.
 BLOCK_MM = (12.0, 7.0)
@@ -153,10 +154,12 @@ def scheme(motion: Motion, i: int, mu_l: float, *, senses: bool = False) -> Sche
         reference = (crank - phi + 180.0) % 360.0 - 180.0
         if abs(reference) < 1e-9:
             reference = 0.0
-        crank_segments = _segments(points, links, blocks, guides)
+        every = _segments(points, links, blocks, guides)
+        others = _segments(points, [(n, p) for n, p in links if n != d.link], blocks,
+                           [gd for gd in guides if gd.link != d.link])   # the crank's slot is the crank's
         pins = np.array([points[p] for p in joints if p != d.pivot], dtype=float).reshape(-1, 2)
         arcs = _drive_arcs(d, motion.drive_rates(i), c, float(la.norm(tip - c)), crank, phi, reference,
-                           crank_segments, pins)
+                           every, others, pins)
     if d.kind == DriveKind.COUPLER:    # the given ω, ε of the driving coupler, on it
         arcs += _sense_arcs(motion, i, points, blocks, (d.link,))
     if senses:
@@ -283,17 +286,19 @@ def _polyline(pts: np.ndarray) -> np.ndarray:
 
 
 def _drive_arcs(d, rates: tuple[float, float], c: np.ndarray, length: float, crank: float, phi: float,
-                reference: float, segments: np.ndarray, pins: np.ndarray) -> list[Arc]:
-    """φ1 from the reference direction to the crank; ω1 and ε1 (``rates``, when not zero) as arc
-    arrows about the pivot, each placed (radius, span, across the crank or beside it) where it
-    keeps clear of the scheme's lines (``segments``, mm), its pins (``pins``), the support, the
-    φ1 arc with its reference line and label, and each other (see :func:`_place_arrow`)."""
+                reference: float, segments: np.ndarray, others: np.ndarray, pins: np.ndarray) -> list[Arc]:
+    """φ1 from the reference direction to the crank; ω1 and ε1 (``rates``, when not zero) as
+    short arc arrows about the pivot (radius at most ARC_MAX_MM), each placed where it keeps
+    clear of the other links' lines (``others``, mm; ``segments``: every line, the driving
+    link's too, for the labels), its pins (``pins``), the support, the φ1 arc with its
+    reference line and label, and each other (see :func:`_place_arrow`)."""
     centre = _xy(c)
-    r_phi = min(max(0.4 * length, 5.0), 12.0)
+    r_phi = min(max(0.4 * length, 5.0), PHI_MAX_MM)
     if length - r_phi < PIN_ROOM_MM:                  # a very short crank: φ1 inside it still
         r_phi = max(length - PIN_ROOM_MM, 3.5)
     arcs = []
     sweep = math.copysign(abs(phi) % 360.0, phi)
+    r_phi = _phi_radius(c, r_phi, reference, sweep, others, pins)
     taken: list[np.ndarray] = [_support_segments(c)]
     rooms: list[np.ndarray] = []                      # points kept for labels: the φ1 label's
     arrows: list[np.ndarray] = []                     # the arc arrows placed (as segments)
@@ -301,15 +306,14 @@ def _drive_arcs(d, rates: tuple[float, float], c: np.ndarray, length: float, cra
         arcs.append(Arc("phi", d.link, centre, r_phi, reference, sweep, "φ" + _sub(d.link)))
         taken.append(_polyline(_arc_samples(c, r_phi, reference, sweep)))
         ref = math.radians(reference)
-        taken.append(np.array([[c, c + (r_phi + 5.0) * np.array([math.cos(ref), math.sin(ref)])]]))
+        taken.append(np.array([[c, c + (r_phi + REFERENCE_OVERRUN_MM) * np.array([math.cos(ref), math.sin(ref)])]]))
         mid = math.radians(reference + sweep / 2)
         rooms.append(c + (r_phi + 3.0) * np.array([math.cos(mid), math.sin(mid)]))
-    crank_seg = np.array([[c, c + length * np.array([math.cos(math.radians(crank)), math.sin(math.radians(crank))])]])
     for kind, value, sym in (("omega", rates[0], "ω"), ("epsilon", rates[1], "ε")):
         if value == 0.0:
             continue
         s = math.copysign(1.0, value)
-        r, mid, span = _place_arrow(c, length, r_phi, crank, s, segments, crank_seg, pins, taken, rooms, arrows)
+        r, mid, span = _place_arrow(c, length, r_phi, crank, s, segments, others, pins, taken, rooms, arrows)
         arcs.append(Arc(kind, d.link, centre, r, mid - s * span / 2, s * span, sym + _sub(d.link), HEAD_MM))
         arrows.append(_polyline(_arc_samples(c, r, mid - span / 2, span)))
         end = math.radians(mid + s * span / 2)
@@ -317,6 +321,14 @@ def _drive_arcs(d, rates: tuple[float, float], c: np.ndarray, length: float, cra
     return arcs
 
 
+#: Radii of the drive's arc arrows ω1, ε1 about the pivot: least, largest (a short arc near the
+#: pivot, as textbooks draw it, whatever the crank's length), and the step between tries, mm.
+ARC_MIN_MM = 5.0
+ARC_MAX_MM = 15.0
+ARC_STEP_MM = 1.5
+#: Largest radius of the φ1 arc, mm, and how far its reference line runs beyond it, mm.
+PHI_MAX_MM = 9.0
+REFERENCE_OVERRUN_MM = 4.0
 #: Clearances of a drive arc arrow, mm: from lines, from pins (centres), from a label's room.
 ARC_CLEAR_MM = 1.2
 PIN_CLEAR_MM = 2.6
@@ -325,8 +337,29 @@ ROOM_CLEAR_MM = 2.5
 LABEL_CLEAR_MM = 1.5
 #: Least distance between two arc arrows (their heads are 2 mm wide), mm.
 ARROW_SEP_MM = 3.5
+#: How far beyond the farthest arc and label room (ARC_MAX_MM + 3 mm from the pivot) a line, pin
+#: or room can still matter to an arc's placement: more than every clearance above.
+NEAR_SLACK_MM = 10.0
+#: Drive arc candidates tried first, before all the others at once (most schemes find room
+#: among the first few).
+ARROW_FIRST = 8
 #: How far from the pivot a crank's pin keeps its arcs, mm.
 PIN_ROOM_MM = 2.5
+
+
+def _phi_radius(c: np.ndarray, r_phi: float, reference: float, sweep: float, others: np.ndarray,
+                pins: np.ndarray) -> float:
+    """The φ1 arc's radius: ``r_phi`` (mm), or, when the arc or its reference line up to it
+    would meet another link's line or a pin there, the largest of 1 mm steps down to
+    ARC_MIN_MM that keeps clear of them (ARC_CLEAR_MM, PIN_CLEAR_MM); ``r_phi`` when none does."""
+    ref = np.array([math.cos(math.radians(reference)), math.sin(math.radians(reference))])
+    for r in np.arange(r_phi, ARC_MIN_MM - 1e-9, -1.0):
+        pts = _arc_samples(c, float(r), reference, sweep)
+        line = c + np.linspace(PIN_CLEAR_MM, r, 8)[:, None] * ref
+        near = float(np.min(la.norm(pts[:, None] - pins[None], axis=-1))) if len(pins) else math.inf
+        if _clear(np.concatenate([pts, line]), [others]) >= ARC_CLEAR_MM and near >= PIN_CLEAR_MM:
+            return float(r)
+    return r_phi
 
 
 def _support_segments(c: np.ndarray) -> np.ndarray:
@@ -342,46 +375,103 @@ def _clear(pts: np.ndarray, segments: list[np.ndarray]) -> float:
     return clearance(pts, np.concatenate(segs)) if segs else math.inf
 
 
+def _segments_near(segments: np.ndarray, c: np.ndarray, reach: float) -> np.ndarray:
+    """The segments (m, 2, 2) of ``segments`` that come within ``reach`` mm of point ``c``."""
+    if len(segments) == 0:
+        return segments
+    a, b = segments[:, 0], segments[:, 1]
+    ab = b - a
+    t = np.clip(la.dot(c - a, ab) / np.maximum(la.dot(ab, ab), 1e-12), 0.0, 1.0)
+    return segments[la.norm(a + t[:, None] * ab - c, axis=-1) <= reach]
+
+
+def _arrow_candidates(length: float, r_phi: float) -> list[tuple[float, float, float]]:
+    """(span deg, offset from the crank deg, radius mm) of the drive's arc arrows, in the order
+    a textbook prefers: across the crank beyond φ1 and inside the crank's pin (or, on a short
+    crank, outside its pin), then beside the crank, then behind the pivot and across from it;
+    every radius within ARC_MIN_MM … ARC_MAX_MM (nearest φ1's first) and every arc long enough
+    for its head."""
+    radii = [ARC_MIN_MM + ARC_STEP_MM * k for k in range(int((ARC_MAX_MM - ARC_MIN_MM) / ARC_STEP_MM + 1e-9) + 1)]
+    across = [r for r in radii if r_phi + 3.5 <= r <= length - PIN_CLEAR_MM] + \
+        [r for r in radii if r >= length + PIN_CLEAR_MM + 1.5]
+    radii.sort(key=lambda r: (abs(r - min(r_phi + 3.5, ARC_MAX_MM)), r))     # nearest just beyond φ1 first
+    order = [(span, 0.0, r) for span in (70.0, 55.0, 40.0) for r in across]
+    order += [(span, off, r) for span in (60.0, 45.0) for off in (50.0, -50.0) for r in radii]
+    order += [(span, off, r) for span in (70.0, 50.0) for off in (180.0, 115.0, -115.0, 150.0, -150.0)
+              for r in radii]
+    order += [(span, off, r) for span in (50.0, 35.0) for off in (90.0, -90.0, 30.0, -30.0) for r in radii]
+    return [o for o in order if math.radians(o[0]) * o[2] >= HEAD_MM + 2.5]
+
+
 def _place_arrow(c: np.ndarray, length: float, r_phi: float, crank: float, sense: float, segments: np.ndarray,
-                 crank_seg: np.ndarray, pins: np.ndarray, taken: list[np.ndarray],
+                 others: np.ndarray, pins: np.ndarray, taken: list[np.ndarray],
                  rooms: list[np.ndarray], arrows: list[np.ndarray]) -> tuple[float, float, float]:
     """(radius mm, middle direction deg, span deg) of a drive arc arrow about pivot ``c``.
 
-    The first candidate, in the order a textbook prefers (across the crank inside its pin, then
-    outside the pin; beside the crank; behind the pivot; wider spans first), that keeps clear:
-    ARC_CLEAR_MM of the other links' lines, the support and φ1 (``taken``), ARROW_SEP_MM of the
-    arc arrows already placed (``arrows``), PIN_CLEAR_MM of the pins, ROOM_CLEAR_MM of the
-    labels' rooms (``rooms``), and leaves LABEL_CLEAR_MM for its own label by its head
-    (``sense`` +1: the head at the counter-clockwise end). Failing all: the one that misses
-    least."""
-    crank_line = [not (np.allclose(sg, crank_seg[0]) or np.allclose(sg, crank_seg[0][::-1])) for sg in segments]
-    others = segments[crank_line] if len(segments) else segments
-    inside = [r for r in r_phi + 4.0 + 1.5 * np.arange(12) if r <= length - PIN_CLEAR_MM + 1e-9]
-    outside = [length + PIN_CLEAR_MM + 1.5 + 1.5 * k for k in range(6)]
-    radii = inside + outside
-    behind = [max(r_phi + 4.0, 8.5) + 1.5 * k for k in range(6)]
-    order = [(span, 0.0, r) for span in (70.0, 55.0, 40.0) for r in radii] + \
-        [(span, off, r) for span in (60.0, 45.0) for off in (50.0, -50.0) for r in radii] + \
-        [(span, 180.0, r) for span in (70.0, 50.0) for r in behind]
+    The first of :func:`_arrow_candidates` that keeps clear: ARC_CLEAR_MM of the other links'
+    lines (``others``), the support and φ1 (``taken``), ARROW_SEP_MM of the arc arrows already
+    placed (``arrows``), PIN_CLEAR_MM of the pins, ROOM_CLEAR_MM of the labels' rooms
+    (``rooms``), and leaves LABEL_CLEAR_MM for its own label by its head (``sense`` +1: the head
+    at the counter-clockwise end) from every line (``segments``). Failing all: the one that
+    misses least."""
+    # only what lies within NEAR_MM of the pivot can decide: every candidate's arc and label room
+    # lie within ARC_MAX_MM + 3 mm of it, so anything farther is more than NEAR_SLACK_MM from them,
+    # beyond every clearance asked (the same choice, in time linear in the mechanism)
+    reach = ARC_MAX_MM + 3.0 + NEAR_SLACK_MM
+    segments, others = _segments_near(segments, c, reach), _segments_near(others, c, reach)
+    pins = pins[la.norm(pins - c, axis=-1) <= reach] if len(pins) else pins
+    rooms = [r for r in rooms if len(r) and float(np.min(la.norm(np.reshape(r, (-1, 2)) - c, axis=-1))) <= reach]
+    # the first few candidates, then all the others at once (each arc's samples padded with its
+    # last one; a crowded pivot rejects many, the time stays one pass over its lines): the first
+    # that keeps clear, else the one that misses least (the first of those within 1e-9 mm)
+    cands = _arrow_candidates(length, r_phi)
+    margins: list[float] = []
+    for lo, hi in ((0, ARROW_FIRST), (ARROW_FIRST, len(cands))):
+        block = cands[lo:hi]
+        if not block:
+            continue
+        mids = [crank + off for _, off, _ in block]
+        arcs = [_arc_samples(c, r, mid - span / 2, span) for (span, _, r), mid in zip(block, mids)]
+        most = max(len(a) for a in arcs)
+        pts = np.stack([np.concatenate([a, np.repeat(a[-1:], most - len(a), axis=0)]) for a in arcs])
+        heads = [math.radians(mid + sense * span / 2) for (span, _, _), mid in zip(block, mids)]
+        room = np.array([c + (r + 3.0) * np.array([math.cos(h), math.sin(h)]) for (_, _, r), h in zip(block, heads)])
+        lines = np.minimum(_clear_each(pts, [others] + taken), _clear_each(pts, arrows) + ARC_CLEAR_MM - ARROW_SEP_MM)
+        label = np.minimum(_clear_each(room[:, None], [segments] + taken + arrows), _nearest_each(room[:, None], pins))
+        got = np.minimum.reduce([lines - ARC_CLEAR_MM, _nearest_each(pts, pins) - PIN_CLEAR_MM,
+                                 _nearest_each(pts, np.array(rooms).reshape(-1, 2)) - ROOM_CLEAR_MM,
+                                 label - LABEL_CLEAR_MM])
+        fits = np.flatnonzero(got >= 0.0)
+        if len(fits):
+            span, _, r = block[int(fits[0])]
+            return float(r), mids[int(fits[0])], span
+        margins += got.tolist()
+    k = 0
+    for j, m in enumerate(margins):
+        if m > margins[k] + 1e-9:
+            k = j
+    span, off, r = cands[k]
+    return float(r), crank + off, span
 
-    def nearest(pts: np.ndarray, to: np.ndarray) -> float:
-        return float(np.min(la.norm(pts[:, None] - to[None], axis=-1))) if len(to) else math.inf
 
-    best = None
-    for span, off, r in order:
-        mid = crank + off
-        pts = _arc_samples(c, r, mid - span / 2, span)
-        lines = min(_clear(pts, [others] + taken), _clear(pts, arrows) + ARC_CLEAR_MM - ARROW_SEP_MM)
-        head = math.radians(mid + sense * span / 2)
-        room = c + (r + 3.0) * np.array([[math.cos(head), math.sin(head)]])
-        label = min(_clear(room, [segments] + taken + arrows), nearest(room, pins))
-        margin = min(lines - ARC_CLEAR_MM, nearest(pts, pins) - PIN_CLEAR_MM,
-                     nearest(pts, np.array(rooms).reshape(-1, 2)) - ROOM_CLEAR_MM, label - LABEL_CLEAR_MM)
-        if margin >= 0.0:
-            return float(r), mid, span
-        if best is None or margin > best[0] + 1e-9:
-            best = (margin, float(r), mid, span)
-    return best[1], best[2], best[3]
+def _clear_each(pts: np.ndarray, segments: list[np.ndarray]) -> np.ndarray:
+    """The least distance (mm) from each candidate's samples ``pts`` (K, S, 2) to the segments
+    of ``segments`` (each (m, 2, 2)); infinite without segments."""
+    segs = [x for x in segments if len(x)]
+    if not segs:
+        return np.full(len(pts), math.inf)
+    segs = np.concatenate(segs)
+    a, ab = segs[:, 0], segs[:, 1] - segs[:, 0]
+    p = pts[:, :, None, :]
+    t = np.clip(np.einsum("...k,...k->...", p - a, ab) / np.maximum(np.einsum("ij,ij->i", ab, ab), 1e-12), 0.0, 1.0)
+    return np.min(la.norm(p - (a + t[..., None] * ab), axis=-1), axis=(1, 2))
+
+
+def _nearest_each(pts: np.ndarray, to: np.ndarray) -> np.ndarray:
+    """The least distance (mm) from each candidate's samples ``pts`` (K, S, 2) to points ``to``."""
+    if not len(to):
+        return np.full(len(pts), math.inf)
+    return np.min(la.norm(pts[:, :, None, :] - to[None, None], axis=-1), axis=(1, 2))
 
 
 def _sense_arcs(motion: Motion, i: int, points, blocks: list[Block], links: tuple[str, ...]) -> list[Arc]:

@@ -7,7 +7,8 @@ barrel, its ``pivot`` the one of its two points pinned to another link, the othe
 and the sliding bar (the piston rod, its ``pin`` pinned to another link, the other its piston
 head). The barrel runs from its pivot along the axis towards the rod's pin; its length is fixed
 for the whole motion (the pivot–mouth distance, shortened or lengthened just enough that at
-every analysed position the piston stays inside and, when the strokes allow it, the pin outside).
+every analysed position the pin stays outside, so the rod always shows, and, when the strokes
+allow it, the piston inside; where they do not, the piston is drawn at the barrel's mouth).
 """
 
 from __future__ import annotations
@@ -45,7 +46,8 @@ Point = tuple[float, float]
 @dataclass(frozen=True)
 class Cylinder:
     """A hydraulic cylinder at one position: ``barrel`` (closed rectangle, four corners),
-    ``piston`` (a bar across inside the barrel at the piston head), ``rod`` (from the piston's
+    ``piston`` (a bar across inside the barrel at the piston head, or by the mouth where the
+    head has left the barrel: see :func:`_barrel_length`), ``rod`` (from the piston's
     centre to the rod's pin) and ``eye`` (from the pivot to the barrel's bottom; None when the
     barrel starts at the pivot). ``axis`` is the unit direction pivot → pin."""
 
@@ -122,20 +124,33 @@ def cylinders(motion: Motion, i: int, mu_l: float) -> tuple[Cylinder, ...]:
         if max(float(np.max(across(p))) for p in (mouth, head)) > ON_AXIS_MM:
             continue
         t_head, t_pin = along(head), along(pin)
-        lo = float(np.max(t_head)) + PISTON_ROOM_MM
-        hi = float(np.min(t_pin)) - PIN_ROOM_MM
-        length = float(np.mean(along(mouth)))
-        length = min(max(length, lo), hi) if lo <= hi else lo
         bottom = min(EYE_MM, max(float(np.min(t_head)) - PISTON_ROOM_MM, 0.0))
+        length = _barrel_length(float(np.mean(along(mouth))), t_head, t_pin, bottom)
         c, u = np.asarray(at[pivot][i]), u_all[i]
         n = np.array([-u[1], u[0]])
         w = BARREL_MM / 2
         barrel = tuple(_xy(c + t * u + s * w * n) for t, s in ((bottom, -1), (length, -1), (length, 1), (bottom, 1)))
-        h = c + float(t_head[i]) * u
+        # the piston at its head; where the head has left the barrel (a stroke longer than the
+        # rod), at the mouth: a piston never leaves its barrel
+        h = c + min(float(t_head[i]), length - PISTON_ROOM_MM) * u
         piston = (_xy(h - 0.8 * w * n), _xy(h + 0.8 * w * n))
         out.append(Cylinder(pr.guide, pr.slider, pivot, pin, head, pr.label, barrel, piston,
                             (_xy(h), _xy(at[pin][i])), (_xy(c), _xy(c + bottom * u)) if bottom > 0 else None, _xy(u)))
     return tuple(out)
+
+
+def _barrel_length(mouth: float, t_head: np.ndarray, t_pin: np.ndarray, bottom: float) -> float:
+    """The barrel's length from its pivot (mm), one for every position: the pivot–mouth distance
+    ``mouth``, shortened or lengthened just enough that at every position the rod's pin (at
+    ``t_pin`` from the pivot) stays PIN_ROOM_MM outside it, so the rod always shows, and, when
+    the strokes allow it, the piston head (``t_head``) PISTON_ROOM_MM inside. The pin comes
+    first: a stroke longer than the rod leaves the head outside at the longest positions, and
+    the piston is drawn at the mouth there. Never shorter than the piston needs past the
+    barrel's ``bottom``."""
+    lo = float(np.max(t_head)) + PISTON_ROOM_MM
+    hi = float(np.min(t_pin)) - PIN_ROOM_MM
+    length = min(max(mouth, lo), hi)
+    return max(length, bottom + 2.0 * PISTON_ROOM_MM)
 
 
 def clearance(samples: np.ndarray, segments: np.ndarray) -> float:

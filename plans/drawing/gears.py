@@ -167,6 +167,7 @@ def draw_gears(sheet: GearSheet, heading: Heading, *, ident: str, style: Style =
     _end_view(dwg, canvas, sheet, ident, style, labels)
     _table(dwg, canvas, sheet, _table_at(sheet), ident, style, given)
     dwg.add(labels)
+    notes = tuple(notes) + sheet.notes                 # the passive planets written out
     if notes:
         note_lines(canvas, dwg.add(dwg.g(id=f"{ident}-notes")), notes, style)
     canvas.place_labels(dwg.add(dwg.g(id=f"{ident}-leaders")))

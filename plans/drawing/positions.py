@@ -4,7 +4,10 @@
 thin lines (the crank's tip numbered A₀ … A_{N−1} and the output point likewise, as a
 textbook numbers the positions), the output link's two extreme positions in thick red lines
 labelled with primes (E′ where its displacement is smallest, E″ largest), and the
-trajectories of the traced points as smooth closed curves.
+trajectories of the traced points as smooth closed curves. A slider on the frame is drawn as
+a textbook draws a ram's positions: its block at the two extremes only, each position a tick
+across the guide, numbered in a column beside the guide (one side for each stroke), each
+number spread clear of the others along the guide and joined to its tick by a leader.
 
 ``draw_velocities``: every position's velocity plan from its pole in one scale (the vectors
 tagged as on a velocity plan sheet, so ``plans check`` measures them), each captioned with its
@@ -13,26 +16,37 @@ position, and the table of |v| of the points and ω of the links at every positi
 
 from __future__ import annotations
 
+import math
 
 import numpy as np
+import shapely
 
-from ..constructions.cycle import GRID_MM, TABLE_ROW_MM, PositionsSheet, VelocitiesSheet
+from ..constructions.cycle import GRID_MM, TABLE_ROW_MM, PositionsSheet, Tick, VelocitiesSheet
 from ..constructions.scheme import Scheme
-from .canvas import Canvas, fmt
+from .canvas import CLEARANCE, Canvas, fmt
 from .marks import bounds, markup
 from .scheme import block_corners, frame_guide, support
 from .sheet import FORMATS, TitleBlock, choose_format, new_sheet, note_lines
 from .style import Style
 from .svg import Heading, plan_layers
-from .text import runs, width
+from .text import box as text_box, runs, width
 from .. import linalg as la
 
-__all__ = ["draw_positions", "draw_velocities", "PIN_MM", "NOTE_ROOM_MM"]
+__all__ = ["draw_positions", "draw_velocities", "PIN_MM", "NOTE_ROOM_MM", "TICK_MM", "LABEL_NEAR_MM"]
 
 #: Radius of a pin on the thin positions, mm.
 PIN_MM = 0.6
 #: Room kept below the drawing for the notes, mm.
 NOTE_ROOM_MM = 12.0
+#: A slider's position on its guide: the tick across the guide, mm; the least gap between two
+#: of its numbers along the guide, mm; a number farther than LABEL_NEAR_MM (mm) from its
+#: tick's end is joined to it by a leader; the column of numbers is tried up to COLUMN_MM
+#: (mm) from the guide, in steps of COLUMN_STEP_MM.
+TICK_MM = 4.0
+LABEL_GAP_MM = 0.6
+LABEL_NEAR_MM = 1.0
+COLUMN_MM = 40.0
+COLUMN_STEP_MM = 0.5
 
 
 def _frame_parts(canvas: Canvas, g, sch: Scheme, ident: str, style: Style) -> None:
@@ -46,8 +60,10 @@ def _frame_parts(canvas: Canvas, g, sch: Scheme, ident: str, style: Style) -> No
         support(canvas, g, sch.points[p], k, ident, style)
 
 
-def _pose(canvas: Canvas, g, sch: Scheme, ident: str, w: float, style: Style, pins: bool = True) -> None:
-    """One position of the moving links: bars, plates (outlines), blocks, slots, pins."""
+def _pose(canvas: Canvas, g, sch: Scheme, ident: str, w: float, style: Style, pins: bool = True,
+          hide: tuple[str, str] | None = None) -> None:
+    """One position of the moving links: bars, plates (outlines), blocks, slots, pins; ``hide``
+    (a link, its point): that block and pin left out (a slider's position drawn as a tick)."""
     sw = fmt(w, 3)
     for gd in sch.guides:
         if not gd.fixed:
@@ -59,12 +75,14 @@ def _pose(canvas: Canvas, g, sch: Scheme, ident: str, w: float, style: Style, pi
         elif len(pts) == 2:
             canvas.line(g, sch.points[pts[0]], sch.points[pts[1]], width=w, stroke_width=sw, id=f"{ident}-link{name}")
     for b in sch.blocks:
+        if hide is not None and b.link == hide[0]:
+            continue
         if b.pin is not None:
             canvas.line(g, b.pin, b.center, width=w, stroke_width=sw, id=f"{ident}-rod{b.link}")
         canvas.polygon(g, block_corners(b), width=w, fill="none", stroke_width=sw, id=f"{ident}-block{b.link}")
     if pins:
         for k, p in enumerate(sch.joints):
-            if p in sch.supports:
+            if p in sch.supports or (hide is not None and p == hide[1]):
                 continue
             canvas.circle(g, sch.points[p], PIN_MM, filled=True, fill="#fff", stroke_width=fmt(style.thin, 3),
                           id=f"{ident}-j{k}")
@@ -101,7 +119,8 @@ def draw_positions(sheet: PositionsSheet, heading: Heading, *, ident: str, style
         pg = dwg.g(id=f"{ident}-pos{i}")
         pg.attribs["data-position"] = str(i)
         pg.attribs["data-angle"] = repr(sheet.angles[i])
-        _pose(canvas, pg, sch, f"{ident}-pos{i}", style.thin, style)
+        _pose(canvas, pg, sch, f"{ident}-pos{i}", style.thin, style,
+              hide=(sheet.output, sheet.point) if sheet.ticks else None)
         poses.add(pg)
     g.add(poses)
     ext = dwg.g(id=f"{ident}-extremes", stroke=style.component_colour)
@@ -113,6 +132,11 @@ def draw_positions(sheet: PositionsSheet, heading: Heading, *, ident: str, style
     g.add(ext)
     frame = dwg.g(id=f"{ident}-frame-parts", stroke=style.colour, fill="none")
     _frame_parts(canvas, frame, sheet.poses[0], ident, style)
+    for t in sheet.ticks:   # each position of the slider: a tick across its guide
+        n = np.array([-t.axis[1], t.axis[0]]) * TICK_MM / 2
+        el = canvas.line(frame, np.add(t.at, -n), np.add(t.at, n), width=style.thin,
+                         stroke_width=fmt(style.thin, 3), id=f"{ident}-tick{t.index}")
+        el.attribs["data-position"] = str(t.index)
     g.add(frame)
     dwg.add(g)
     labels = dwg.g(id=f"{ident}-labels", fill=style.colour)
@@ -133,8 +157,10 @@ def draw_positions(sheet: PositionsSheet, heading: Heading, *, ident: str, style
         tip = sch.points[sheet.tip]
         canvas.label(labels, tip, f"{markup(sheet.tip)}_{{{i}}}", size=style.small_text,
                      prefer=np.subtract(tip, pivot), ident=f"{ident}-a{i}", digits=False, near=0.6)
+    if sheet.ticks:
+        _tick_labels(canvas, labels, sheet, ident, style)
     for i, sch in enumerate(sheet.poses):
-        if sheet.point == sheet.tip:
+        if sheet.point == sheet.tip or sheet.ticks:
             break
         xy = sch.points[sheet.point]
         canvas.label(labels, xy, f"{markup(sheet.point)}_{{{i}}}", size=style.small_text,
@@ -149,6 +175,78 @@ def draw_positions(sheet: PositionsSheet, heading: Heading, *, ident: str, style
         note_lines(canvas, dwg.add(dwg.g(id=f"{ident}-notes")), notes, style)
     canvas.place_labels(dwg.add(dwg.g(id=f"{ident}-leaders")))
     return dwg.tostring()
+
+
+def _tick_labels(canvas: Canvas, parent, sheet: PositionsSheet, ident: str, style: Style) -> None:
+    """The numbers of a slider's positions (``sheet.ticks``): each stroke's in a column on its
+    side of the guide, spread along the guide just enough to keep LABEL_GAP_MM apart (the
+    least squares shift from their ticks, in their order), the column as near the guide as
+    keeps every number clear of the ink, other labels and the drawing area's edge; a number
+    away from its tick is joined to the tick's end by a leader. A stroke whose column finds
+    no room anywhere has its numbers placed as other labels are."""
+    size = style.small_text
+    tree = shapely.STRtree(canvas.ink)
+    for side in (1.0, -1.0):
+        ticks = sorted((t for t in sheet.ticks if t.side == side), key=lambda t: float(la.dot(t.at, t.axis)))
+        if not ticks:
+            continue
+        texts = [f"{markup(sheet.point)}_{{{t.index}}}" for t in ticks]
+        placed = _column(canvas, tree, ticks, texts, size, side, canvas.placed)
+        for t, text, spot in zip(ticks, texts, placed or [None] * len(ticks)):
+            end = np.add(t.at, side * np.array([-t.axis[1], t.axis[0]]) * TICK_MM / 2)
+            if spot is None:
+                canvas.label(parent, end, text, size=size, prefer=side * np.array([-t.axis[1], t.axis[0]]),
+                             ident=f"{ident}-o{t.index}", digits=False, near=0.6)
+                continue
+            b = canvas.text(parent, spot, text, size=size, italic=True, ident=f"{ident}-o{t.index}")
+            tip = canvas.paper(end)
+            near = (min(max(tip[0], b.x0), b.x1), min(max(tip[1], b.y0), b.y1))
+            if math.dist(tip, near) > LABEL_NEAR_MM:
+                el = canvas.line(parent, end, (near[0] - canvas.dx, canvas.dy - near[1]), width=0.6 * style.thin,
+                                 stroke=style.construction_colour, stroke_width=fmt(0.6 * style.thin, 3),
+                                 id=f"{ident}-ol{t.index}")
+                el.attribs["class"] = "leader"
+                el.attribs["data-position"] = str(t.index)
+
+
+def _column(canvas: Canvas, tree, ticks: list[Tick], texts: list[str], size: float, side: float,
+            others) -> list[tuple[float, float]] | None:
+    """Baseline starts (paper mm) of ``texts``, the numbers of ``ticks`` (in order along the
+    guide) in a column on ``side`` of it (see :func:`_tick_labels`), or None."""
+    u = np.array(ticks[0].axis, dtype=float)
+    n = side * np.array([-u[1], u[0]])
+    boxes = [text_box(runs(t, digits=False), size, True, 0.0, 0.0) for t in texts]
+    w = np.array([b.x1 - b.x0 for b in boxes])
+    h = np.array([b.y1 - b.y0 for b in boxes])
+    along = np.abs(u[0]) * w + np.abs(u[1]) * h
+    across = np.abs(n[0]) * w + np.abs(n[1]) * h
+    t = np.array([float(la.dot(k.at, u)) for k in ticks])
+    gaps = np.concatenate([[0.0], np.cumsum((along[:-1] + along[1:]) / 2 + LABEL_GAP_MM)])
+    spread = _increasing(t - gaps) + gaps          # the least squares shift keeping the gaps
+    base = np.array(ticks[0].at) + (spread - t[0])[:, None] * u
+    a = canvas.area
+    taken = [shapely.box(o.x0, o.y0, o.x1, o.y1) for o in others]
+    for d in np.arange(TICK_MM / 2 + LABEL_NEAR_MM / 2, COLUMN_MM, COLUMN_STEP_MM):
+        centres = [canvas.paper(c) for c in base + (d + across / 2)[:, None] * n]
+        rects = [(cx - wi / 2, cy - hi / 2, cx + wi / 2, cy + hi / 2) for (cx, cy), wi, hi in zip(centres, w, h)]
+        if any(r[0] < a.x0 or r[1] < a.y0 or r[2] > a.x1 or r[3] > a.y1 for r in rects):
+            continue
+        grown = [shapely.box(r[0] - CLEARANCE, r[1] - CLEARANCE, r[2] + CLEARANCE, r[3] + CLEARANCE) for r in rects]
+        if len(tree.query(grown, predicate="intersects")[0]) or any(g.intersects(o) for g in grown for o in taken):
+            continue
+        return [(r[0] - b.x0, r[1] - b.y0) for r, b in zip(rects, boxes)]
+    return None
+
+
+def _increasing(y: np.ndarray) -> np.ndarray:
+    """The non-decreasing sequence nearest ``y`` in least squares (pooled adjacent violators)."""
+    blocks: list[list[float]] = []              # [mean, count]
+    for v in y:
+        blocks.append([float(v), 1.0])
+        while len(blocks) > 1 and blocks[-2][0] > blocks[-1][0]:
+            (m1, c1), (m2, c2) = blocks.pop(-2), blocks.pop()
+            blocks.append([(m1 * c1 + m2 * c2) / (c1 + c2), c1 + c2])
+    return np.concatenate([np.full(int(c), m) for m, c in blocks])
 
 
 def _number(x: float, digits: int = 4) -> str:

@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 
-from ..constructions.scheme import BLOCK_MM, Arc, Scheme
+from ..constructions.scheme import BLOCK_MM, REFERENCE_OVERRUN_MM, Arc, Scheme
 from ..constructions.scheme_drive import ARROW_HEAD_MM, BARREL_MM, Cylinder, DriveArrow
 from .canvas import Canvas, fmt
 from .marks import markup as _markup
@@ -22,8 +22,6 @@ __all__ = ["scheme_layers", "DOT_MM"]
 
 #: Radius of the dot that marks a coupler point (a point of a link that is no pair), mm.
 DOT_MM = 0.75
-#: Reference line of φ1: how far it runs beyond the φ1 arc, mm.
-REFERENCE_OVERRUN_MM = 5.0
 #: Largest angle step of a drawn arc, degrees.
 ARC_STEP = 3.0
 

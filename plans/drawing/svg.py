@@ -29,6 +29,7 @@ writer's rounding (mm); the checker takes its tolerance from its own rules, neve
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 from typing import Sequence
 
@@ -47,8 +48,8 @@ from .text import ASCENT, DESCENT, runs, width as text_width
 from .. import linalg as la
 from ..spatial import PointGrid
 
-__all__ = ["Heading", "draw_plan", "draw_scheme", "draw_centres", "plan_layers", "centre_rays", "fmt", "detail_of",
-           "detail_caption", "detail_layers"]
+__all__ = ["Heading", "minus_signs", "draw_plan", "draw_scheme", "draw_centres", "plan_layers", "centre_rays", "fmt",
+           "detail_of", "detail_caption", "detail_layers"]
 
 #: Images closer than this share one label ("p ≡ b"), mm.
 COINCIDE_MM = 0.3
@@ -59,11 +60,25 @@ SAME_IMAGE_MM = 1e-9
 
 @dataclass(frozen=True)
 class Heading:
-    """The words of a sheet's title block: mechanism, sheet name, position."""
+    """The words of a sheet's title block: mechanism, sheet name, position. A negative number
+    in the position (``s = -0.12 m``) is written with the minus sign: ``s = −0.12 m``."""
 
     mechanism: str
     sheet: str
     position: str
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "position", minus_signs(self.position))
+
+
+#: A hyphen that writes a negative number: before a digit or a decimal point and a digit, not
+#: after a letter, digit, closing bracket or dot (``I(0-2-3)``, ``1e-05``, a name ``S-1``).
+_NEGATIVE = re.compile(r"(?<![\w).])-(?=\.?\d)")
+
+
+def minus_signs(text: str) -> str:
+    """``text`` with the hyphen of every negative number replaced by the minus sign U+2212."""
+    return _NEGATIVE.sub("−", text)
 
 
 def direction_text(dx: float, dy: float) -> str:

@@ -26,11 +26,11 @@ import numpy as np
 
 from .. import linalg as la
 
-from ..errors import PlansError
+from ..errors import SceneError
 from ..kinematics import analyse
 from ..kinematics.cycle import Cycle, output_motion
 from ..kinetostatics import Travel, forces_following
-from ..scene import Scene
+from ..scene import MIN_RATE, Scene
 from .piecewise import Piecewise, combine, fit, nodes_of
 from .reduced import Reduced, reduce
 
@@ -74,8 +74,10 @@ class MachineDynamics:
     constant moment on the crank (N·m in the sense of rotation: positive a motor, negative a
     consumer when the loads drive, as in an engine); ``at``: M_r, I_r, dI_r/dφ (CCW, as
     :class:`~.reduced.Reduced`) at the cycle's N positions; ``theta`` those positions' θ;
-    ``breaks`` the θ where a load kinks; ``flywheel`` and ``kinetic0`` T at θ = 0 (J), with the
-    flywheel's J, so that ω(θ) = √(2(T0 + ΔT)/(I + J))."""
+    ``breaks`` the θ where a load kinks; ``flywheel``; ``kinetic0`` T0, T at θ = 0 (J), with the
+    flywheel's J, so that ω(θ) = √(2(T0 + ΔT)/(I + J)); ``excess`` e0 = T0 − ½ω_m²·J (J, of the
+    size of ΔT) and ``rise`` ω² − ω_m² = 2(e0 + ΔT − ½ω_m²·I)/(I + J) (rad²/s²): the speed's
+    departure from ω_m without the cancellation of T0 + ΔT against T0 when J is large (small δ)."""
 
     sense: float
     start: float
@@ -92,16 +94,19 @@ class MachineDynamics:
     breaks: np.ndarray
     flywheel: Flywheel
     kinetic0: float
-    omega_sq: Piecewise
+    excess: float
+    rise: Piecewise
 
     @property
     def J(self) -> float:
         return self.flywheel.inertia_exact
 
     def omega(self, theta: np.ndarray | float) -> np.ndarray:
-        """|ω1| (rad/s) at θ."""
-        e = self.kinetic0 + self.energy(theta)
-        return np.sqrt(np.maximum(2.0 * e / (self.inertia(theta) + self.J), 0.0))
+        """|ω1| (rad/s) at θ: √(ω_m² + 2(e0 + ΔT − ½ω_m²·I)/(I + J))."""
+        w2 = self.omega_m * self.omega_m
+        inertia = self.inertia(theta)
+        gain = self.excess + self.energy(theta) - 0.5 * w2 * inertia
+        return np.sqrt(np.maximum(w2 + 2.0 * gain / (inertia + self.J), 0.0))
 
     def epsilon(self, theta: np.ndarray | float) -> np.ndarray:
         """dω/dt in the sense of rotation (rad/s²) at θ: (dΔT/dθ − ½ω²·dI/dθ)/(I + J)."""
@@ -119,10 +124,9 @@ class MachineDynamics:
         return -self.work(theta) if self.constant >= 0.0 else -self.constant * theta
 
     def delta_reached(self) -> tuple[float, float, float]:
-        """(ω_max, ω_min, δ) of the true speed, found on the cycle."""
-        hi = math.sqrt(self.omega_sq.extreme(1.0)[1])
-        lo = math.sqrt(max(self.omega_sq.extreme(-1.0)[1], 0.0))
-        return hi, lo, (hi - lo) / (0.5 * (hi + lo))
+        """(ω_max, ω_min, δ) of the true speed, found on the cycle (δ = (ω_max − ω_min)/their
+        mean, from their departures from ω_m: no cancellation at small δ)."""
+        return _reached(self.rise, self.omega_m)
 
 
 def machine_dynamics(scene: Scene, cycle: Cycle) -> MachineDynamics:
@@ -131,6 +135,7 @@ def machine_dynamics(scene: Scene, cycle: Cycle) -> MachineDynamics:
     mech = cycle.motion.mechanism
     structure = cycle.motion.structure
     w1 = float(mech.drive.speed)
+    _check_speed(scene, w1)
     sense = 1.0 if w1 > 0.0 else -1.0
     start = float(cycle.start)
     follows = forces_following(scene, cycle)
@@ -176,21 +181,52 @@ def machine_dynamics(scene: Scene, cycle: Cycle) -> MachineDynamics:
     pos_motion, pos_travel = solve(theta, 2)
     at = reduce(pos_motion, scene, pos_travel)
     omega_m = abs(w1)
-    wheel, t0 = flywheel_for(energy, inertia, omega_m, delta=dyn.delta, flywheel=dyn.flywheel)
-    w2 = fit(edges, 2.0 * (t0 + energy(nodes_of(edges))) / (inertia(nodes_of(edges)) + wheel.inertia_exact))
+    wheel, excess = _flywheel(energy, inertia, omega_m, dyn.delta, dyn.flywheel)
+    x = nodes_of(edges)
+    rise = _rise(edges, excess, energy(x), inertia(x), wheel.inertia_exact, omega_m)
     return MachineDynamics(sense=sense, start=start, omega_m=omega_m, rotor=dyn.rotor_inertia, moment=moment,
                            inertia=inertia, slope=slope, work=work, energy=energy, constant=constant, at=at,
-                           theta=theta, breaks=breaks, flywheel=wheel, kinetic0=t0, omega_sq=w2)
+                           theta=theta, breaks=breaks, flywheel=wheel,
+                           kinetic0=0.5 * omega_m * omega_m * wheel.inertia_exact + excess, excess=excess, rise=rise)
+
+
+def _check_speed(scene: Scene, w1: float) -> None:
+    """The crank's mean speed must be at least MIN_RATE rad/s (the drive's own bound: the squares
+    of slower velocities underflow; the flywheel grows as 1/ω_m²). A written [drive] omega is read
+    against it; a gear train at 0 rpm (the kinematics' mechanism at rest) is refused here, at its
+    input, and so is a slower train's output when the reader has not refused it first."""
+    if abs(w1) >= MIN_RATE:
+        return
+    if scene.gears is not None and scene.gears.output is not None:
+        given = ", ".join(f"{name} = {rpm:g} rpm" for name, rpm in scene.gears.inputs)
+        raise SceneError(f"[dynamics] needs the crank turning: the gear train's output {scene.gears.output!r} turns "
+                         f"it at ω_m = {abs(w1):g} rad/s ({given}), below {MIN_RATE:g} rad/s (the least speed "
+                         "plans computes with: slower velocities' squares underflow, and the flywheel grows as "
+                         "1/ω_m²); give the train's input a speed", key="gears.input")
+    raise SceneError(f"[dynamics] needs the crank turning at its mean speed: ω_m = {abs(w1):g} rad/s is below "
+                     f"{MIN_RATE:g} rad/s; give omega", key="drive.omega")
 
 
 def flywheel_for(energy: Piecewise, inertia: Piecewise, omega_m: float, *, delta: float | None = None,
                  flywheel: float | None = None) -> tuple[Flywheel, float]:
-    """The flywheel and T0 (the kinetic energy at θ = 0) of a steady cycle whose change of
+    """The flywheel and T0 (the kinetic energy at θ = 0, J) of a steady cycle whose change of
     kinetic energy is ``energy`` ΔT(θ) (J, periodic: 0 at both ends) and reduced inertia
     ``inertia`` I(θ) (kg·m²), at the mean speed ``omega_m`` (rad/s): for ``delta``, J exactly from
     J = (max(ΔT − ½ω_max²·I) − min(ΔT − ½ω_min²·I)) / (½(ω_max² − ω_min²)) — the tangents of
-    the energy–mass curve — and Wittenbauer's the same with ½ω_m²(1 ± δ); for a given J, T0
-    such that (ω_max + ω_min)/2 = ω_m, and δ."""
+    the energy–mass curve, with ½(ω_max² − ω_min²) = ω_m²·δ exactly — and Wittenbauer's the
+    same with ½ω_m²(1 ± δ); for a given J, T0 such that (ω_max + ω_min)/2 = ω_m, and δ."""
+    wheel, excess = _flywheel(energy, inertia, omega_m, delta, flywheel)
+    return wheel, 0.5 * omega_m * omega_m * wheel.inertia_exact + excess
+
+
+def _flywheel(energy: Piecewise, inertia: Piecewise, omega_m: float, delta: float | None,
+              flywheel: float | None) -> tuple[Flywheel, float]:
+    """:func:`flywheel_for`, returning e0 = T0 − ½ω_m²·J (J) instead of T0: the kinetic energy
+    beyond the flywheel's at ω_m, of the size of ΔT however large J is.
+
+    No difference of nearly equal numbers at small δ: ω_max² − ω_min² = 2ω_m²·δ exactly (not the
+    difference of the two squares, which loses log10(1/δ) digits), and with the tangent at ω_max
+    touching at θ_a, T0 = ½ω_max²(J + I_a) − ΔT_a, so e0 = ½ω_m²·δ(1 + δ/4)·J − c_max."""
     def tangent(k: float, sign: float) -> tuple[float, float, float]:
         f = combine((1.0, energy), (-k, inertia))
         th, c = f.extreme(sign)
@@ -198,59 +234,130 @@ def flywheel_for(energy: Piecewise, inertia: Piecewise, omega_m: float, *, delta
 
     if (delta is None) == (flywheel is None):
         raise ValueError("give delta or flywheel")
+    w2 = omega_m * omega_m
     if delta is not None:
         d = delta
+        if not d > 0.0 or not w2 > 0.0:
+            raise ValueError(f"the flywheel for δ needs δ > 0 and ω_m > 0, got δ = {d!r}, ω_m = {omega_m!r}")
         k_hi, k_lo = 0.5 * (omega_m * (1 + d / 2)) ** 2, 0.5 * (omega_m * (1 - d / 2)) ** 2
         hi, lo = tangent(k_hi, 1.0), tangent(k_lo, -1.0)
-        j = (hi[2] - lo[2]) / (k_hi - k_lo)
-        w_hi, w_lo = tangent(0.5 * omega_m ** 2 * (1 + d), 1.0), tangent(0.5 * omega_m ** 2 * (1 - d), -1.0)
-        jw = (w_hi[2] - w_lo[2]) / (omega_m ** 2 * d)
-        if j >= 0.0:
-            t0 = k_hi * j - hi[2]
-            return Flywheel(d, omega_m, j, jw, w_hi, w_lo, j, False), t0
+        j = (hi[2] - lo[2]) / (w2 * d)                   # k_hi − k_lo = ω_m²·δ
+        w_hi, w_lo = tangent(0.5 * w2 * (1 + d), 1.0), tangent(0.5 * w2 * (1 - d), -1.0)
+        jw = (w_hi[2] - w_lo[2]) / (w2 * d)
+        if j > 0.0:
+            excess = 0.5 * w2 * d * (1 + d / 4) * j - hi[2]
+            return Flywheel(d, omega_m, j, jw, w_hi, w_lo, j, False), excess
         required, j = j, 0.0
         wheel = Flywheel(d, omega_m, 0.0, max(jw, 0.0), w_hi, w_lo, required, False)
+        key = "dynamics"
     else:
         j = flywheel
         wheel = Flywheel(0.0, omega_m, j, None, None, None, None, True)
-    t0 = _mean_speed(omega_m, energy, inertia, j)
-    if j + float(np.min(inertia(np.linspace(energy.edges[0], energy.edges[-1], 721)))) <= 0.0:
-        raise PlansError("the machine has no inertia at all (no masses, no rotor_inertia, no flywheel): its speed is "
-                         "not defined by its energy; give masses, rotor_inertia or a flywheel")
-    w2 = lambda th: 2.0 * (t0 + energy(th)) / (inertia(th) + j)      # noqa: E731
-    edges = energy.edges
-    sq = fit(edges, w2(nodes_of(edges)))
-    hi, lo = math.sqrt(sq.extreme(1.0)[1]), math.sqrt(max(sq.extreme(-1.0)[1], 0.0))
-    return replace(wheel, delta=(hi - lo) / omega_m), t0
+        key = "dynamics.flywheel"
+    _check_inertia(inertia, j, key)
+    excess = _excess(omega_m, energy, inertia, j, key)
+    x = nodes_of(energy.edges)
+    _, _, reached = _reached(_rise(energy.edges, excess, energy(x), inertia(x), j, omega_m), omega_m)
+    return replace(wheel, delta=reached), excess
 
 
-def _mean_speed(omega_m: float, energy: Piecewise, inertia: Piecewise, j: float) -> float:
-    """T0 such that (ω_max + ω_min)/2 = ω_m with the flywheel J (bisection on T0, where the mean
-    grows with T0)."""
+def _check_inertia(inertia: Piecewise, j: float, key: str) -> None:
+    """I(θ) + J > 0 over the cycle, or a one-line refusal at ``key``: where the machine holds no
+    kinetic energy at a speed, the speed is not defined by its energy."""
+    th = np.concatenate([np.linspace(inertia.edges[0], inertia.edges[-1], 721), nodes_of(inertia.edges)])
+    total = inertia(th) + j
+    if np.all(total > 0.0):
+        return
+    fix = "give [masses] of the links, rotor_inertia (the motor and gears reduced to the crank) or a flywheel > 0"
+    if not np.any(total > 0.0):
+        raise SceneError("the machine has no inertia at all (no masses, no rotor_inertia, no flywheel): its speed is "
+                         f"not defined by its energy; {fix}", key=key)
+    at = float(th[int(np.argmin(total))])
+    raise SceneError(f"the machine's reduced inertia is 0 at θ = {math.degrees(at):.6g}° from the first position "
+                     f"(nothing that moves there has mass, and there is no flywheel): its speed is not defined by "
+                     f"its energy there; {fix}", key=key)
+
+
+def _rise(edges: np.ndarray, excess: float, energy: np.ndarray, inertia: np.ndarray, j: float,
+          omega_m: float) -> Piecewise:
+    """ω² − ω_m² = 2(e0 + ΔT − ½ω_m²·I)/(I + J) (rad²/s²) from ΔT and I at the nodes of ``edges``."""
+    gain = excess + energy - 0.5 * omega_m * omega_m * inertia
+    return fit(edges, 2.0 * gain / (inertia + j))
+
+
+def _reached(rise: Piecewise, omega_m: float) -> tuple[float, float, float]:
+    """(ω_max, ω_min, δ) from the rise ω² − ω_m²: ω − ω_m = (ω² − ω_m²)/(ω + ω_m), so that
+    ω_max − ω_min is the difference of two small departures of opposite sign, not of two
+    nearly equal speeds; δ = (ω_max − ω_min)/((ω_max + ω_min)/2). ω_min is 0 where the crank
+    would stop."""
+    (hi, up), (lo, down) = (_departure(rise.extreme(s)[1], omega_m) for s in (1.0, -1.0))
+    return hi, lo, (up - down) / (omega_m + 0.5 * (up + down))
+
+
+def _departure(rise: float, omega_m: float) -> tuple[float, float]:
+    """(ω, ω − ω_m) for ω² − ω_m² = ``rise`` (rad/s; ω = 0 when ω² would be negative)."""
+    w2 = omega_m * omega_m + rise
+    if not w2 > 0.0:
+        return 0.0, -omega_m
+    w = math.sqrt(w2)
+    return w, rise / (w + omega_m)
+
+
+def _excess(omega_m: float, energy: Piecewise, inertia: Piecewise, j: float, key: str) -> float:
+    """e0 = T0 − ½ω_m²·J (J) such that (ω_max + ω_min)/2 = ω_m with the flywheel J: the root of
+    the mean's departure from ω_m, which grows with e0 (regula falsi, Illinois, bracketed), found
+    on e0 itself — of the size of ΔT — not on T0 = ½ω_m²·J + e0, whose last bits would be
+    larger than the cycle's swing when J is large."""
     edges = energy.edges
     x = nodes_of(edges)
-    e, i = energy(x), inertia(x) + j
+    e, i = energy(x), inertia(x)
+    base = e - 0.5 * omega_m * omega_m * i
 
-    def mean(t0: float) -> float:
-        sq = fit(edges, 2.0 * (t0 + e) / i)
-        return 0.5 * (math.sqrt(sq.extreme(1.0)[1]) + math.sqrt(max(sq.extreme(-1.0)[1], 0.0)))
+    def departure(e0: float) -> float:
+        rise = fit_rise(e0)
+        _, up = _departure(rise.extreme(1.0)[1], omega_m)
+        _, down = _departure(rise.extreme(-1.0)[1], omega_m)
+        return 0.5 * (up + down)
 
-    lo = float(np.max(-e)) * (1 + 1e-12) + 1e-300      # T ≥ 0 everywhere
-    if mean(lo) >= omega_m:
-        raise PlansError(f"with a flywheel of {j:g} kg·m² the crank stops within the cycle at ω_m = {omega_m:g} rad/s "
-                         "(the loads take more energy than the machine holds): give a larger flywheel")
-    hi = max(lo, 0.0) + 0.5 * float(np.max(i)) * omega_m ** 2 * 4 + 1.0
-    while mean(hi) < omega_m:
-        hi *= 2.0
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        if mean(mid) < omega_m:
-            lo = mid
-        else:
-            hi = mid
-        if hi - lo <= 1e-15 * abs(hi):
+    def fit_rise(e0: float) -> Piecewise:
+        return _rise(edges, e0, e, i, j, omega_m)
+
+    # e0 = −max(base): the gain e0 + base ≤ 0 everywhere, ω ≤ ω_m; e0 = −min(base): ω ≥ ω_m
+    lo, hi = -float(np.max(base)), -float(np.min(base))
+    width = max(hi - lo, 1e-12 * max(abs(lo), abs(hi)), 1e-300)
+    f_lo, f_hi = departure(lo), departure(hi)
+    for _ in range(60):                  # the fit between the nodes may stray past them
+        if f_lo <= 0.0:
             break
-    return 0.5 * (lo + hi)
+        hi, f_hi, lo = lo, f_lo, lo - width
+        f_lo, width = departure(lo), 2.0 * width
+    for _ in range(60):
+        if f_hi >= 0.0:
+            break
+        lo, f_lo, hi = hi, f_hi, hi + width
+        f_hi, width = departure(hi), 2.0 * width
+    root, f_root, side = (lo, f_lo, 0) if abs(f_lo) <= abs(f_hi) else (hi, f_hi, 0)
+    for _ in range(200):
+        if f_root == 0.0 or abs(f_root) <= 4e-16 * omega_m or hi - lo <= 4.0 * math.ulp(max(abs(lo), abs(hi))):
+            break
+        x_new = (lo * f_hi - hi * f_lo) / (f_hi - f_lo) if f_hi != f_lo else 0.5 * (lo + hi)
+        if not lo < x_new < hi:
+            x_new = 0.5 * (lo + hi)
+        f_new = departure(x_new)
+        if f_new < 0.0:
+            lo, f_lo = x_new, f_new
+            f_hi = 0.5 * f_hi if side == -1 else f_hi       # Illinois: halve the end kept twice
+            side = -1
+        else:
+            hi, f_hi = x_new, f_new
+            f_lo = 0.5 * f_lo if side == 1 else f_lo
+            side = 1
+        root, f_root = x_new, f_new
+    if not omega_m * omega_m + fit_rise(root).extreme(-1.0)[1] > 0.0:
+        raise SceneError(f"with a flywheel of {j:g} kg·m² the crank stops within the cycle at ω_m = {omega_m:g} rad/s "
+                         "(the loads take more energy than the machine holds at that speed): give a larger flywheel, "
+                         "or delta (the flywheel is then found for it)", key=key)
+    return root
 
 
 def _breaks(scene: Scene, cycle: Cycle, solve, sense: float, start: float) -> np.ndarray:

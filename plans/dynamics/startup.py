@@ -24,13 +24,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import PlansError
+from ..errors import SceneError
 from ..scene.dynamics import Motor
 from .machine import MachineDynamics
 from .dop853 import DOP853
-from .motor import motor_moment
+from .motor import RPM, motor_moment, no_load_speed
 
-__all__ = ["Startup", "Steady", "startup", "RTOL", "ATOL", "STEADY_BAND", "SAMPLES"]
+__all__ = ["Startup", "Steady", "startup", "RTOL", "ATOL", "STEADY_BAND", "SAMPLES", "MAX_TURNS", "MAX_STIFFNESS",
+           "MAX_EVALUATIONS", "MAX_SHOOTING_EVALUATIONS", "motor_stiffness"]
 
 #: The integrator's relative and absolute tolerances (absolute: rad and rad/s).
 RTOL = 1e-10
@@ -39,6 +40,45 @@ ATOL = 1e-12
 STEADY_BAND = 0.01
 #: Samples of the start-up kept for the report and the sheet.
 SAMPLES = 1201
+#: Most turns of the crank a start-up may simulate, t_end·ω_0/2π with ω_0 the motor's no-load
+#: speed at the crank (the mean speed never exceeds it while the loads resist): a start-up
+#: settles within tens of turns (the press in 9), the steady cycle after it is found by shooting
+#: over one turn, and a turn costs ~760 evaluations of the equation (~30 ms) with the press's
+#: 8 kinks a turn, so 200 turns take ~6 s.
+MAX_TURNS = 200
+#: Largest t_end/τ, τ = min(I_r + J)/max|dM_motor/dω| (s) the time in which the motor's
+#: characteristic pulls ω back (its slope at the crank, the ratio counted squared): DOP853 is
+#: explicit, and a motor far stiffer than the machine's inertia holds its steps near 2.7·τ
+#: (measured: 4.4 evaluations per τ), so 2e4 τ take ~90 000 evaluations (~4 s); ω has long
+#: settled by then.
+MAX_STIFFNESS = 2e4
+#: Most evaluations of the equation's right side in a start-up (~12 s), a guard behind the two
+#: bounds above (a machine with many kinks a turn restarts the integrator at each): past it the
+#: start-up is refused, naming the instant reached.
+MAX_EVALUATIONS = 300_000
+#: Most evaluations of the shooting for the steady cycle (its secant's revolutions); past it
+#: the steady cycle is reported as not found.
+MAX_SHOOTING_EVALUATIONS = 75_000
+
+
+class _OverBudget(Exception):
+    """Raised from the right side once the evaluations run out; ``t`` the time (or angle) reached."""
+
+    def __init__(self, t: float) -> None:
+        super().__init__(t)
+        self.t = t
+
+
+class _Budget:
+    """A count of the right side's evaluations, raising :class:`_OverBudget` past ``limit``."""
+
+    def __init__(self, limit: int) -> None:
+        self.left = limit
+
+    def spend(self, t: float) -> None:
+        self.left -= 1
+        if self.left < 0:
+            raise _OverBudget(t)
 
 
 @dataclass(frozen=True)
@@ -84,13 +124,14 @@ def _pieces(machine: MachineDynamics) -> np.ndarray:
     return edges[np.concatenate([np.diff(edges) > 1e-12, [True]])]
 
 
-def _equation(machine: MachineDynamics, motor: Motor, lo: float, hi: float, base: float):
+def _equation(machine: MachineDynamics, motor: Motor, lo: float, hi: float, base: float, budget: _Budget):
     """The right side for θ − ``base`` in [``lo``, ``hi``] (one smooth piece of a revolution),
-    its loads continued smoothly beyond both ends."""
+    its loads continued smoothly beyond both ends; each call spends one of ``budget``."""
     j = machine.J
     moment, slope, inertia = (f.between(lo, hi) for f in (machine.moment, machine.slope, machine.inertia))
 
     def rhs(t: float, y: np.ndarray) -> np.ndarray:
+        budget.spend(t)
         th = y[0] - base
         w = y[1]
         num = float(motor_moment(motor, w)) + moment.at(th) - 0.5 * slope.at(th) * w * w
@@ -112,7 +153,20 @@ def _integrate(machine: MachineDynamics, motor: Motor, t_end: float, rtol: float
     """DOP853 from rest, stopped at every kink of the loads (θ at a break of a revolution) and
     restarted from there: no step has a kink inside, so the error control holds on every step
     (a step over a kink errs by ~0.08·ΔM′·(ω·h)², far beyond rtol, while the error estimate
-    sees little of it). Raises PlansError when the crank stalls."""
+    sees little of it). Refused (SceneError) when the crank stalls or the evaluations exceed
+    :data:`MAX_EVALUATIONS`."""
+    budget = _Budget(MAX_EVALUATIONS)
+    try:
+        return _pieces_integrated(machine, motor, t_end, rtol, atol, budget)
+    except _OverBudget as over:
+        raise SceneError(f"the start-up took more than {MAX_EVALUATIONS} evaluations of its equation (the bound: "
+                         f"about 12 s of computing) and reached only t = {over.t:.4g} s of t_end = {t_end:g} s; give "
+                         f"t_end ≤ {_rounded_down(over.t)} s", key="dynamics.simulate.t_end") from None
+
+
+def _pieces_integrated(machine: MachineDynamics, motor: Motor, t_end: float, rtol: float, atol: float,
+                       budget: _Budget) -> Solution:
+    """:func:`_integrate`'s work, every evaluation spent from ``budget``."""
     from scipy.integrate import OdeSolution, solve_ivp       # imported only when a start-up is simulated
     two_pi = 2.0 * math.pi
     edges = _pieces(machine)
@@ -130,21 +184,23 @@ def _integrate(machine: MachineDynamics, motor: Motor, t_end: float, rtol: float
             return y[0] - target
         reaches.terminal, reaches.direction = True, 1
 
-        rhs = _equation(machine, motor, edges[k], edges[k + 1], base)
+        rhs = _equation(machine, motor, edges[k], edges[k + 1], base, budget)
         sol = solve_ivp(rhs, (t0, t_end), y0, method=DOP853, rtol=rtol, atol=atol, dense_output=True,
                         events=(stalls, reaches), first_step=first)
         nfev += sol.nfev
         if not sol.success:
-            raise PlansError(f"the start-up could not be integrated: {sol.message}")
+            raise SceneError(f"the start-up could not be integrated past t = {t0:.4g} s ({sol.message}); give a "
+                             "smaller t_end", key="dynamics.simulate.t_end")
         ts.append(sol.sol.ts[1:])
         parts += sol.sol.interpolants
         if sol.status == 1 and len(sol.t_events[0]):
             ts_ = float(sol.t_events[0][0])
             th = float(sol.y_events[0][0][0])
-            raise PlansError(f"the motor cannot start the load: the crank stops at t = {ts_:.4g} s, "
+            raise SceneError(f"the motor cannot start the load: the crank stops at t = {ts_:.4g} s, "
                              f"φ = {(machine.start + machine.sense * math.degrees(th)) % 360:.6g}° (the loads' "
                              f"reduced moment there is {float(machine.moment(th % two_pi)):.4g} N·m); give a "
-                             "stronger motor, a larger ratio or a larger flywheel")
+                             "stronger motor (power, or its torque table), a larger ratio, or a larger flywheel "
+                             "([dynamics] flywheel, or a smaller delta)", key="motor")
         if sol.status != 1:
             break
         # the state at the kink by a step of the method that ends there (error-controlled),
@@ -173,12 +229,15 @@ def _integrate(machine: MachineDynamics, motor: Motor, t_end: float, rtol: float
 
 def startup(machine: MachineDynamics, motor: Motor, t_end: float, *, rtol: float = RTOL,
             atol: float = ATOL) -> Startup:
-    """The start-up from rest at position 0 to ``t_end`` s (see the module)."""
+    """The start-up from rest at position 0 to ``t_end`` s (see the module). Refused in one
+    line (SceneError) when the motor cannot start the load, or the start-up exceeds
+    :data:`MAX_TURNS`, :data:`MAX_STIFFNESS` or :data:`MAX_EVALUATIONS`."""
     m0, l0 = float(motor_moment(motor, 0.0)), float(machine.moment(0.0))
     if m0 + l0 <= 0.0:
-        raise PlansError(f"the motor cannot start the load: its starting moment at the crank is {m0:.4g} N·m and the "
+        raise SceneError(f"the motor cannot start the load: its starting moment at the crank is {m0:.4g} N·m and the "
                          f"loads resist with {-l0:.4g} N·m at the first position (φ = {machine.start % 360:.6g}°); "
-                         "give a stronger motor or a larger ratio")
+                         "give a stronger motor (power, or its torque table) or a larger ratio", key="motor")
+    _check_length(machine, motor, t_end)
     sol = _integrate(machine, motor, t_end, rtol, atol)
     t = np.linspace(0.0, t_end, SAMPLES)
     y = sol.sol(t)
@@ -204,6 +263,55 @@ def startup(machine: MachineDynamics, motor: Motor, t_end: float, *, rtol: float
                    evaluations=int(sol.nfev), steady=steady, last=last, time_to_steady=when, solution=sol)
 
 
+def motor_stiffness(motor: Motor) -> float:
+    """The largest |dM/dω| of the motor's moment at the crank (N·m·s): i² times its shaft's —
+    Kloss' at synchronous speed, 2·M_k/(s_k·ω_sync); a table's steepest row (or its continuation)."""
+    i2 = motor.ratio * motor.ratio
+    if motor.torque:
+        rows = motor.torque
+        return i2 * max(abs((b[1] - a[1]) / (b[0] - a[0])) for a, b in zip(rows, rows[1:])) / RPM
+    lam = motor.breakdown
+    s_k = (1.0 - motor.rated_rpm / motor.synchronous_rpm) * (lam + math.sqrt(lam * lam - 1.0))
+    m_k = lam * motor.power / (motor.rated_rpm * RPM)
+    return i2 * 2.0 * m_k / (s_k * motor.synchronous_rpm * RPM)
+
+
+def _check_length(machine: MachineDynamics, motor: Motor, t_end: float) -> None:
+    """Refuse a start-up longer than :data:`MAX_TURNS` turns at the motor's no-load speed, or than
+    :data:`MAX_STIFFNESS` of the motor's time constant on the machine's inertia."""
+    w0 = no_load_speed(motor)
+    if not math.isfinite(w0) or not w0 > 0.0:
+        raise SceneError("the motor cannot start the load: its torque table gives no driving moment at any speed; "
+                         "give a torque table with positive moments (N·m) below its no-load speed", key="motor.torque")
+    turns = t_end * w0 / (2.0 * math.pi)
+    if turns > MAX_TURNS:
+        raise SceneError(f"t_end = {t_end:g} s would turn the crank about {turns:.4g} times at the motor's no-load speed "
+                         f"{w0:.4g} rad/s, beyond {MAX_TURNS} turns (a start-up settles within tens of turns, and the "
+                         f"steady cycle after it is found by shooting; each turn costs ~30 ms); give t_end ≤ "
+                         f"{_rounded_down(MAX_TURNS * 2.0 * math.pi / w0)} s", key="dynamics.simulate.t_end")
+    th = np.concatenate([np.linspace(0.0, 2.0 * math.pi, 721), machine.inertia.edges])
+    held = float(np.min(machine.inertia(th))) + machine.J
+    stiff = motor_stiffness(motor)
+    if not stiff > 0.0:
+        return
+    tau = held / stiff
+    if t_end > MAX_STIFFNESS * tau:
+        raise SceneError(f"the motor's moment changes by {stiff:.4g} N·m per rad/s of the crank (the ratio counts "
+                         f"squared) against an inertia of {held:.4g} kg·m²: ω settles within τ = {tau:.4g} s, and "
+                         f"t_end = {t_end:g} s is {t_end / tau:.4g} τ, beyond {MAX_STIFFNESS:g} τ (an explicit "
+                         f"integrator steps ~2.7 τ at most: over {4.4 * MAX_STIFFNESS:.0f} evaluations); give t_end ≤ "
+                         f"{_rounded_down(MAX_STIFFNESS * tau)} s, a larger flywheel, or a weaker motor or smaller "
+                         "ratio", key="dynamics.simulate.t_end")
+
+
+def _rounded_down(x: float) -> str:
+    """``x`` to 3 significant digits, rounded toward 0 (a bound given back must be within it)."""
+    if not x > 0.0:
+        return "0"
+    step = 10.0 ** (math.floor(math.log10(x)) - 2)
+    return f"{math.floor(x / step) * step:.3g}"
+
+
 def _time_at(sol, theta: float, t_end: float) -> float:
     """The instant the simulated θ reaches ``theta`` (bisection on the dense output; θ grows)."""
     lo, hi = 0.0, t_end
@@ -220,12 +328,24 @@ def _time_at(sol, theta: float, t_end: float) -> float:
 
 def steady_cycle(machine: MachineDynamics, motor: Motor, guess: float, *, rtol: float = RTOL) -> Steady | None:
     """The periodic cycle under the motor (see the module) from a guess of ω at position 0, or
-    None when the shooting does not converge (the motor cannot keep the machine turning)."""
+    None when the shooting does not converge (the motor cannot keep the machine turning) or
+    takes more than :data:`MAX_SHOOTING_EVALUATIONS` evaluations."""
+    try:
+        return _steady_cycle(machine, motor, guess, rtol)
+    except _OverBudget:
+        return None
+
+
+def _steady_cycle(machine: MachineDynamics, motor: Motor, guess: float, rtol: float) -> Steady | None:
+    """:func:`steady_cycle`'s shooting; raises :class:`_OverBudget` past its evaluations."""
     from scipy.integrate import solve_ivp
     j = machine.J
     two_pi = 2.0 * math.pi
 
+    budget = _Budget(MAX_SHOOTING_EVALUATIONS)
+
     def de(th: float, e: np.ndarray) -> np.ndarray:
+        budget.spend(th)
         w = math.sqrt(max(2.0 * e[0] / (machine.inertia.at(th) + j), 0.0))
         return np.array([float(motor_moment(motor, w)) + machine.moment.at(th)])
 

@@ -12,15 +12,15 @@ from dataclasses import dataclass
 
 from ..scene import Scene
 from ..scene.gears import GearTrain
-from .geometry import TrainGeometry, assembly_number, train_geometry
+from .geometry import TrainGeometry, assembly_number, planet_sets, train_geometry
 from .involute import GearPair, gear_pair, inv, inv_inverse, min_shift
 from .speeds import TrainSpeeds, Willis, carrier_ratio, central_links, exact, solve_train, tabular
-from .train import GearLink, Mesh, TrainStructure, train_structure
+from .train import GearLink, Mesh, PassivePlanet, TrainStructure, train_structure
 
 __all__ = ["GearAnalysis", "analyse_train", "with_train", "TrainSpeeds", "TrainStructure", "TrainGeometry",
-           "GearLink", "Mesh", "Willis", "solve_train", "train_structure", "train_geometry", "tabular",
-           "carrier_ratio", "central_links", "assembly_number", "exact", "GearPair", "gear_pair", "inv", "inv_inverse",
-           "min_shift"]
+           "GearLink", "Mesh", "PassivePlanet", "Willis", "solve_train", "train_structure", "train_geometry", "tabular",
+           "carrier_ratio", "central_links", "assembly_number", "planet_sets", "exact", "GearPair", "gear_pair", "inv",
+           "inv_inverse", "min_shift"]
 
 
 @dataclass(frozen=True)
@@ -32,11 +32,12 @@ class GearAnalysis:
 
     @property
     def warnings(self) -> tuple[str, ...]:
-        """One line each: undercut wheels, and the geometry left unchecked (no modules)."""
+        """One line each: undercut wheels, and the geometry left unchecked (no modules, or a
+        condition the checks do not cover, such as the assembly of a carrier's planets)."""
         if self.geometry is None:
             return ("the wheels have no module: the train is solved from its teeth alone, its geometry "
                     "(coaxial, assembly, neighbourhood, undercut) went unchecked",)
-        return self.geometry.warnings
+        return self.geometry.warnings + self.geometry.unchecked
 
 
 def analyse_train(train: GearTrain) -> GearAnalysis:

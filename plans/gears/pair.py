@@ -22,7 +22,7 @@ import math
 from dataclasses import dataclass
 
 from ..errors import SceneError
-from ..scene.gear_pair import GearPairSpec
+from ..scene.gear_pair import MAX_PAIR_TEETH, MIN_PAIR_TEETH, GearPairSpec
 from ..scene.gears import GearTrain
 from .involute import GearPair, gear_pair, min_shift
 
@@ -105,6 +105,11 @@ def analyse_pair(spec: GearPairSpec, gears: GearTrain | None = None, *, meshing:
         if a.module is None or b.module is None:
             raise SceneError(f"wheels {a.name} and {b.name} need a module in [gears.wheels] to be drawn in mesh",
                              key="gear_pair.mesh")
+        for w in (a, b):                     # the bounds z1, z2 of a pair written out have
+            if not MIN_PAIR_TEETH <= w.teeth <= MAX_PAIR_TEETH:
+                raise SceneError(f"wheel {w.name} has {w.teeth} teeth; a wheel of the pair drawn in mesh has "
+                                 f"{MIN_PAIR_TEETH} … {MAX_PAIR_TEETH} teeth (its generation is drawn tooth by "
+                                 "tooth): mesh another pair of [gears]", key="gear_pair.mesh")
         if a.teeth > b.teeth:
             a, b = b, a                      # the pinion first
         z1, z2, m, names = a.teeth, b.teeth, a.module, (a.name, b.name)

@@ -1,11 +1,12 @@
-"""The ``gears`` section of the JSON report: mobility, links, speeds (rpm exact and float, ω),
-ratios as exact fractions, each carrier's Willis equation with its residual, the tabular
-method, and the geometry.
+"""The ``gears`` section of the JSON report: mobility (and the passive planets with the
+constraints they add), links, speeds (rpm exact and float, ω), ratios as exact fractions, each
+carrier's Willis equation with its residual, the tabular method, and the geometry.
 
 Imports only plans.gears (and the standard library)."""
 
 from __future__ import annotations
 
+import math
 from fractions import Fraction
 from typing import Any
 
@@ -41,10 +42,13 @@ def gears_report(analysis: GearAnalysis) -> dict[str, Any]:
             ratios[j][k] = None if r is None else {"exact": _frac(r), "value": float(r)}
     out: dict[str, Any] = {
         "mobility": s.mobility,
-        "count": {"n": s.n, "p5": s.p5, "p4": s.p4,
-                  "formula": f"W = 3·{s.n} − 2·{s.p5} − {s.p4} = {s.mobility}"},
+        "count": {"n": s.n, "p5": s.p5, "p4": s.p4, "formula": s.formula},
         "passive": {"planets": train.planets, "extra_planet_links": s.passive_planets,
-                    "redundant_constraints": s.redundant},
+                    "redundant_constraints": s.redundant,
+                    "written": [{"planet": p.name, "copy_of": p.copy_of, "carrier": p.carrier, "meshes": p.meshes}
+                                for p in s.passive],
+                    "count": {"n": s.n + s.passive_planets, "p5": s.p5 + s.passive_planets,
+                              "p4": s.p4 + s.passive_meshes, "q": s.redundant, "formula": s.formula_with_passive}},
         "links": [{"name": link.name, "members": list(link.members),
                    "axis": "frame" if link.axis_on is None else link.axis_on, "fixed": link.fixed}
                   for link in s.links],
@@ -64,7 +68,9 @@ def gears_report(analysis: GearAnalysis) -> dict[str, Any]:
     }
     g = analysis.geometry
     out["geometry"] = None if g is None else {
-        "pitch_radius_mm": g.radius, "arm_mm": g.arm, "unchecked": list(g.unchecked)}
+        "pitch_radius_mm": g.radius, "arm_mm": g.arm, "planet_arm_mm": g.planet_arm,
+        "planet_angle_deg": {p: math.degrees(t) for p, t in g.planet_angle.items()}, "planet_sets": g.sets,
+        "unchecked": list(g.unchecked)}
     out["warnings"] = list(analysis.warnings)
     return out
 

@@ -22,7 +22,8 @@ from .train import GearLink, TrainStructure, train_structure
 
 @dataclass(frozen=True)
 class Willis:
-    """Willis' equation of carrier ``carrier`` between central links ``a`` and ``b``:
+    """Willis' equation of carrier ``carrier`` between links ``a`` and ``b`` (two central links;
+    a central link and a planet when the carrier has one central link):
     (n_a − n_H)/(n_b − n_H) = ``ratio`` (= i_ab^H, from the teeth); ``residual`` = (n_a − n_H) −
     i_ab^H·(n_b − n_H) in rpm, evaluated in floating point from the solved speeds."""
 
@@ -75,11 +76,11 @@ def solve_train(train: GearTrain, *, inputs: Mapping[str, float] | None = None) 
     rank = _rank([r[:] for r in rows]) if rows else 0
     free = len(moving) - rank
     if free == 0 or w <= 0:
-        raise StructureError(f"the train is locked: W = 3·{structure.n} − 2·{structure.p5} − {structure.p4} = {w}"
+        raise StructureError(f"the train is locked: {structure.formula}"
                              f"{'' if free == 0 else f', and its meshes leave {free} motion(s)'}; free a fixed "
                              "link or remove a mesh", key="gears")
     if free != w:
-        raise StructureError(f"W = 3·{structure.n} − 2·{structure.p5} − {structure.p4} = {w}, but the meshes leave "
+        raise StructureError(f"{structure.formula}, but the meshes leave "
                              f"{free} independent motion(s): a closed loop of meshes constrains twice; remove a mesh",
                              key="gears.meshes")
     if len(given) != w:
@@ -174,19 +175,25 @@ def carrier_ratio(structure: TrainStructure, carrier: str, a: str, b: str) -> Fr
 
 
 def central_links(structure: TrainStructure, carrier: str) -> tuple[GearLink, ...]:
-    """The links on the central axis that mesh with the planets of ``carrier`` (scene order)."""
+    """The links on the central axis that mesh with the planets of carrier link ``carrier`` (scene
+    order): suns and rings, also one on another carrier's shaft (a later stage's sun)."""
     names = {n for m in structure.meshes if m.reference == carrier for n in (m.link_a, m.link_b)}
     return tuple(link for link in structure.links
-                 if link.name in names and link.axis_on is None and not link.carrier)
+                 if link.name in names and link.axis_on is None and link.name != carrier)
 
 
 def _willis(structure: TrainStructure, rpm: Mapping[str, Fraction]) -> tuple[Willis, ...]:
+    """Each carrier's Willis equations: its first central link with every other one; with a single
+    central link, that link with each of its planets (both seen from the carrier)."""
     out = []
     for c in structure.train.carriers:
         h = structure.link_of(c).name
-        central = central_links(structure, h)
-        for other in central[1:]:
-            a, b = central[0].name, other.name
+        central = [link.name for link in central_links(structure, h)]
+        planets = [link.name for link in structure.planets_of(c)]
+        pairs = [(central[0], b) for b in central[1:]] if len(central) > 1 else \
+            [(central[0], p) for p in planets] if central else \
+            [(planets[0], b) for b in planets[1:2]]
+        for a, b in pairs:
             ratio = carrier_ratio(structure, h, a, b)
             if ratio is None:
                 continue

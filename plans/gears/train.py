@@ -1,6 +1,12 @@
 """The structure of a gear train: its links (wheels joined on one shaft, carriers), the frame each
 mesh is seen from, and the mobility W = 3n − 2p5 − p4 with the passive planets.
 
+A planet is passive when it repeats another: the equally spaced copies of ``planets = k``, and a
+planet link written out that has the same carrier, the same teeth and meshes the same links as
+an earlier one (Khurmi & Gupta draw pinions B and C both between sun A and ring D). The count
+n, p5, p4 leaves them out; counted with them, W = 3n' − 2p5' − p4' + q, where q is the number of
+redundant constraints they add (a passive link with m meshes adds m − 1).
+
 Every mesh is a higher pair (p4); every moving link turns in one revolute pair (p5), on the frame
 or on the carrier that carries its axis. A mesh is seen from its *reference*: the frame when both
 axes are fixed, else the carrier that carries the planet's axis (the other wheel is then a
@@ -47,10 +53,23 @@ class Mesh:
 
 
 @dataclass(frozen=True)
+class PassivePlanet:
+    """Planet link ``name`` written out as a repeat of ``copy_of`` on carrier ``carrier``: the same
+    teeth, meshing the same links in its ``meshes`` meshes; it turns as ``copy_of`` does."""
+
+    name: str
+    copy_of: str
+    carrier: str
+    meshes: int
+
+
+@dataclass(frozen=True)
 class TrainStructure:
-    """Links, meshes and the count of the train. ``mobility`` is W = 3n − 2p5 − p4 of the train as
-    described (one planet per carrier); ``passive_planets`` the extra equally spaced copies, and
-    ``redundant`` the constraints they add (W counted with them is mobility − redundant)."""
+    """Links, meshes and the count of the train. ``mobility`` is W = 3n − 2p5 − p4 of the train
+    without its passive planets (one of each on its carrier); ``passive_planets`` the passive
+    planet links (the extra equally spaced copies and those written out, ``passive``), with
+    ``passive_meshes`` meshes, and ``redundant`` q, the constraints they add: counted with them,
+    W = 3(n + passive_planets) − 2(p5 + passive_planets) − (p4 + passive_meshes) + q."""
 
     train: GearTrain
     links: tuple[GearLink, ...]
@@ -60,10 +79,28 @@ class TrainStructure:
     p4: int
     passive_planets: int
     redundant: int
+    passive: tuple[PassivePlanet, ...] = ()
+    passive_meshes: int = 0
 
     @property
     def mobility(self) -> int:
         return 3 * self.n - 2 * self.p5 - self.p4
+
+    @property
+    def formula(self) -> str:
+        """W as counted without the passive planets: "W = 3·n − 2·p5 − p4 = W"."""
+        return f"W = 3·{self.n} − 2·{self.p5} − {self.p4} = {self.mobility}"
+
+    @property
+    def formula_with_passive(self) -> str:
+        """W counted with every passive planet: "W = 3·n' − 2·p5' − p4' + q = W"."""
+        n = self.n + self.passive_planets
+        return (f"W = 3·{n} − 2·{self.p5 + self.passive_planets} − {self.p4 + self.passive_meshes} + "
+                f"{self.redundant} = {self.mobility}")
+
+    def copy_of(self, link: str) -> str | None:
+        """The planet link that passive link ``link`` repeats, or None (not a written-out copy)."""
+        return next((p.copy_of for p in self.passive if p.name == link), None)
 
     def link_of(self, member: str) -> GearLink:
         """The link that holds wheel or carrier ``member``."""
@@ -76,9 +113,14 @@ class TrainStructure:
     def moving(self) -> tuple[GearLink, ...]:
         return tuple(link for link in self.links if not link.fixed)
 
-    def planets_of(self, carrier: str) -> tuple[GearLink, ...]:
-        """The links whose axes ``carrier`` carries."""
-        return tuple(link for link in self.links if link.axis_on == carrier)
+    def planets_of(self, carrier: str, *, passive: bool = False) -> tuple[GearLink, ...]:
+        """The links whose axes ``carrier`` carries (with ``passive``, the written-out copies too)."""
+        copies = set() if passive else {p.name for p in self.passive}
+        return tuple(link for link in self.links if link.axis_on == carrier and link.name not in copies)
+
+    def copies(self, link: str) -> tuple[str, ...]:
+        """The written-out passive copies of planet link ``link`` (scene order)."""
+        return tuple(p.name for p in self.passive if p.copy_of == link)
 
 
 def train_structure(train: GearTrain) -> TrainStructure:
@@ -92,13 +134,50 @@ def train_structure(train: GearTrain) -> TrainStructure:
             raise StructureError(f"carrier {c!r} carries no planet; give a wheel on = {c!r} or remove the carrier",
                                  key="gears.carriers")
     meshes = tuple(_mesh(train, a, b, link_of) for a, b in train.meshes)
-    moving = [link for link in links if not link.fixed]
-    planet_links = [link for link in moving if link.axis_on is not None]
-    extra = (train.planets - 1) * len(planet_links)
-    planet_meshes = sum(1 for m in meshes for link in planet_links if link.name in (m.link_a, m.link_b))
-    redundant = (train.planets - 1) * (planet_meshes - len(planet_links)) if planet_links else 0
-    return TrainStructure(train=train, links=links, meshes=meshes, n=len(moving), p5=len(moving), p4=len(meshes),
-                          passive_planets=extra, redundant=max(redundant, 0))
+    passive = _written_copies(train, links, meshes)
+    copies = {p.name for p in passive}
+    counted = [m for m in meshes if m.link_a not in copies and m.link_b not in copies]
+    moving = [link for link in links if not link.fixed and link.name not in copies]
+    k = train.planets
+    extra = redundant = extra_meshes = 0
+    for c in train.carriers:                       # k − 1 more sets of each carrier's planets
+        planets = {link.name for link in moving if link.axis_on == c}
+        touching = sum(1 for m in counted if m.link_a in planets or m.link_b in planets)
+        extra += (k - 1) * len(planets)
+        extra_meshes += (k - 1) * touching
+        redundant += (k - 1) * max(touching - len(planets), 0)
+    for p in passive:                              # each written-out copy, k times
+        extra += k
+        extra_meshes += k * p.meshes
+        redundant += k * (p.meshes - 1)
+    return TrainStructure(train=train, links=links, meshes=meshes, n=len(moving), p5=len(moving), p4=len(counted),
+                          passive_planets=extra, redundant=redundant, passive=passive, passive_meshes=extra_meshes)
+
+
+def _written_copies(train: GearTrain, links: tuple[GearLink, ...], meshes: tuple[Mesh, ...]
+                    ) -> tuple[PassivePlanet, ...]:
+    """The planet links that repeat an earlier one (scene order): the same carrier, held still or
+    not alike, wheels of the same teeth, module and kind, each meshing the same links."""
+    partners: dict[str, set[str]] = {}
+    for m in meshes:
+        partners.setdefault(m.a, set()).add(m.link_b)
+        partners.setdefault(m.b, set()).add(m.link_a)
+    first: dict[tuple, str] = {}
+    out = []
+    for link in links:
+        if link.axis_on is None or link.carrier:
+            continue
+        wheels = [train.wheel(n) for n in link.members]
+        if any(not partners.get(w.name) for w in wheels):
+            continue                               # a wheel meshing nothing repeats nothing
+        key = (link.axis_on, link.fixed, tuple(sorted((w.teeth, w.internal, w.module or 0.0,
+                                                       tuple(sorted(partners[w.name]))) for w in wheels)))
+        if key in first:
+            count = sum(1 for m in meshes if link.name in (m.link_a, m.link_b))
+            out.append(PassivePlanet(name=link.name, copy_of=first[key], carrier=link.axis_on, meshes=count))
+        else:
+            first[key] = link.name
+    return tuple(out)
 
 
 def _links(train: GearTrain) -> tuple[GearLink, ...]:

@@ -149,8 +149,9 @@ def _rrr(g: Group, mech: Mechanism, states: States, tol: float, branch: int | No
     ex = _scaled(1.0 / Ls, d)
 
     def why(i: int) -> str:
+        low = abs(lm - ln) if abs(lm - ln) > 1e-12 * (lm + ln) else 0.0     # equal links: 0, not rounding noise
         return (f"|{g.d.point}{g.f.point}| = {L[i]:.6g} m, but links {g.m} ({lm:.6g} m) and {g.n} ({ln:.6g} m) "
-                f"join only between {abs(lm - ln):.6g} and {lm + ln:.6g} m")
+                f"join only between {low:.6g} and {lm + ln:.6g} m")
 
     out = []
     for sign in _signs(branch):

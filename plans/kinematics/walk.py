@@ -137,17 +137,23 @@ def check_crossing(mech: Mechanism, g, reason: str, sin: np.ndarray, walk: Walk)
                 group=group_label(g), angle=fmt(mech, target), at=float(b))
 
 
-def failure(mech: Mechanism, g, walk: Walk, i: int, why: str) -> AssemblyError:
+def failure(mech: Mechanism, g, walk: Walk, i: int, why: str, detail: str = "") -> AssemblyError:
     """The error of group ``g`` failing at grid position ``i`` for reason ``why``, reported at
-    the requested value nearest beyond it (and where the walk failed, when that differs)."""
+    the requested value nearest beyond it (and where the walk failed, when that differs).
+    ``detail`` is what was measured at position ``i`` (``|AC| = 0.4 m, but …``): it is said
+    of the value where the walk failed, never of the requested one when they differ
+    (``at 170°: cannot assemble (the walk from the sketch at 90° fails at 145°): at 145°,
+    |AC| = …``)."""
     grid = walk.grid
     sweep = next(sw for sw in walk.sweeps if i in sw)
     target = requested_beyond(walk.requested, grid[i], grid[sweep[-1]] - grid[0])
     target = grid[i] if target is None else target
     turns = _turns(mech, walk)
-    where = "" if grid[i] == target else (f" (the walk from the sketch at {fmt(mech, grid[0] - turns)} "
-                                          f"fails at {fmt(mech, grid[i] - turns)})")
-    return AssemblyError(f"{why}{where}; check the lengths or the requested positions",
+    failed = fmt(mech, grid[i] - turns)
+    where = "" if grid[i] == target else \
+        f" (the walk from the sketch at {fmt(mech, grid[0] - turns)} fails at {failed})"
+    told = "" if not detail else f": {detail}" if grid[i] == target else f": at {failed}, {detail}"
+    return AssemblyError(f"{why}{where}{told}; check the lengths or the requested positions",
                          group=group_label(g), angle=fmt(mech, target), at=float(grid[i]))
 
 

@@ -8,6 +8,7 @@ Imports only plans.errors (and the standard library): every reader of plans.scen
 from __future__ import annotations
 
 import math
+import numbers
 import reprlib
 from typing import Any, Mapping
 
@@ -68,19 +69,31 @@ def quoted(value: Any) -> str:
     return f'"{value}"' if isinstance(value, (int, float)) and not isinstance(value, bool) else '"NAME"'
 
 
+def is_number(value: Any) -> bool:
+    """Whether ``value`` is a real number a scene may give: an int or a float, or a NumPy (or other
+    registered) integer or real of a mapping given to the Python API — not a bool, not complex."""
+    return isinstance(value, numbers.Real) and not isinstance(value, bool)
+
+
+def whole(value: Any) -> int | None:
+    """``value`` as a Python int when it is a whole number (an int or a NumPy integer, not a bool
+    and not a float such as 20.0), else None."""
+    return int(value) if isinstance(value, numbers.Integral) and not isinstance(value, bool) else None
+
+
 def as_float(value: int | float) -> float:
     """``value`` (a number read from TOML or JSON) as a float; an integer beyond the largest
     double (TOML integers have any number of digits, up to 4300) is ±inf, not an OverflowError,
     so that the caller's finiteness check refuses it in one line."""
     try:
         return float(value)
-    except OverflowError:
+    except OverflowError:                        # a huge int (or Fraction)
         return math.inf if value > 0 else -math.inf
 
 
 def number(value: Any, key: str, *, positive: bool = False, bound: float | None = None, why: str = "") -> float:
     """A finite number; ``bound`` (SI) limits its magnitude, ``why`` says where the bound comes from."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
+    if not is_number(value):
         raise SceneError(f"expected a number, got {SHOW.repr(value)}", key=key)
     x = as_float(value)
     if not math.isfinite(x):

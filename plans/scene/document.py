@@ -17,15 +17,15 @@ from .gear_pair import read_gear_pair
 from .gears import read_gears, read_synthesis
 from .loads import read_balance, read_forces, read_gravity, read_masses, read_moments
 from .options import read_cycle, read_draw
-from .scales import read_scales
+from .scales import read_scales, refuse_scales
 from .sketch import check_dimensions, read_lengths, read_links, read_points, read_sliders
 from .gears import GearTrain
-from .values import MAX_TITLE_CHARS, Scene
+from .values import FRAME, MAX_TITLE_CHARS, Scene
 
 _TOP_KEYS = {"title", "description", "points", "links", "sliders", "drive", "lengths", "plans", "scales",
              "masses", "forces", "moments", "gravity", "balance", "gears", "synthesis", "dynamics", "motor", "gear_pair"}
 #: The keys of a scene that is a gear train alone (no [points], [links], [drive]).
-_TRAIN_KEYS = {"title", "description", "plans", "scales", "gears", "synthesis", "gear_pair"}
+_TRAIN_KEYS = {"title", "description", "plans", "gears", "synthesis", "gear_pair"}
 #: What a scene of gears alone draws: the train's sheet, the pair in mesh and its cutting.
 _GEAR_SHEETS = ("gears", "meshing", "cutting")
 
@@ -82,6 +82,10 @@ def _parse(data: Mapping[str, Any], file: str | None) -> Scene:
                              "omega from [drive]", key="drive.omega")
         drive_keys["omega"] = 1.0      # a placeholder: plans.gears.with_train sets the train's ω
     drive = read_drive(drive_keys, links, sliders, points, cycle=cycle_keys)
+    if gears is not None and not set(links[drive.link]) & set(links[FRAME]):
+        raise SceneError(f"a gear train turns a crank, a link pivoted on the frame, and link {drive.link} is a coupler "
+                         "(no point on the frame); drive a link pinned to the frame or remove [gears] output",
+                         key="gears.output")
     lengths = read_lengths(subtable(data, "lengths"), points, links)
     check_dimensions(points, links, sliders, lengths)
     plans_table = subtable(data, "plans")
@@ -132,8 +136,10 @@ def _parse(data: Mapping[str, Any], file: str | None) -> Scene:
 def _train_only(data: Mapping[str, Any], title: str, description: str, gears: GearTrain | None,
                 file: str | None) -> Scene:
     """A scene of gears alone: [gears] (or [synthesis], which finds it) and/or [gear_pair], with
-    title, description, [plans] draw, [scales]."""
-    extra = sorted(str(k) for k in set(data) - _TRAIN_KEYS)
+    title, description, [plans] draw (and no scales: an empty [scales] at most)."""
+    if "scales" in data:          # the gear sheets choose their own scales (see refuse_scales)
+        refuse_scales(subtable(data, "scales"))
+    extra = sorted(str(k) for k in set(data) - _TRAIN_KEYS - {"scales"})
     if extra:
         raise SceneError(f"[{extra[0]}] belongs to a linkage, but this scene has no [points], [links], [drive]; "
                          f"a gear train alone has {', '.join(sorted(_TRAIN_KEYS))}", key=extra[0])
@@ -159,5 +165,5 @@ def _train_only(data: Mapping[str, Any], title: str, description: str, gears: Ge
     synthesis = read_synthesis(data["synthesis"]) if "synthesis" in data else None
     return Scene(title=title or ("Gear train" if pair is None or gears is not None else "Gear pair"), points={},
                  links={}, sliders=(), drive=None, draw=tuple(dict.fromkeys(draw)),
-                 scales=read_scales(subtable(data, "scales")), description=description, file=file, gears=gears,
+                 description=description, file=file, gears=gears,
                  synthesis=synthesis, gear_pair=pair)

@@ -105,6 +105,27 @@ def read_drive(table: Mapping[str, Any], links: Mapping[str, Any], sliders: tupl
     return Drive(link=link, kind=kind, values=values, speed=speed, rate=rate, along=along)
 
 
+def check_train_speed(omega: float, epsilon: float, key: str, per_input: float | None = None) -> None:
+    """Refuse the crank's ω (rad/s) that a gear train gives it where a written ``omega`` would be
+    refused: |ω| ≤ MAX_OMEGA, and 0 or |ω| ≥ MIN_RATE (then ε too, rad/s²). ``key`` names the
+    train's input (``gears.input.a``); ``per_input``, ω per rpm of that input when it is the only
+    one, turns the bounds into the input speeds that meet them."""
+    def rpm(sign: str, bound: float) -> str:
+        return f": |{key.rsplit('.', 1)[-1]}| {sign} {bound / abs(per_input):.4g} rpm here" if per_input else ""
+    if abs(omega) > MAX_OMEGA:
+        raise SceneError(f"the gear train turns the crank at ω = {omega:.4g} rad/s, out of range: "
+                         f"|ω| ≤ {MAX_OMEGA:g} rad/s, as for a written omega (beyond any machine; keeps velocities "
+                         f"and accelerations far from overflow); give an input speed that turns it no faster"
+                         f"{rpm('≤', MAX_OMEGA)}", key=key)
+    if 0.0 < abs(omega) < MIN_RATE:
+        raise SceneError(f"the gear train turns the crank at ω = {omega:.4g} rad/s, too slow to compute with, as for "
+                         f"a written omega: give an input speed of 0 (at rest) or one that turns it at least "
+                         f"{MIN_RATE:g} rad/s in magnitude{rpm('≥', MIN_RATE)}", key=key)
+    if omega == 0.0 and 0.0 < abs(epsilon) < MIN_RATE:
+        raise SceneError(f"{epsilon:g} rad/s² while the gear train holds the crank at rest is too small to compute "
+                         f"with: give 0 or at least {MIN_RATE:g} rad/s² in magnitude", key="drive.epsilon")
+
+
 def _not_for(key: str, kind: str, keys: str, fix: str = "remove it") -> str:
     """The words refusing a [drive] key that means nothing for this kind of drive, as an unknown
     key is refused: the key, the drive's kind and the keys that apply to it."""

@@ -13,7 +13,7 @@ from typing import Any, Mapping
 from ..errors import SceneError
 from .checks import SHOW, number
 
-__all__ = ["Dynamics", "Motor", "Simulation", "read_dynamics", "DRIVINGS", "MAX_DELTA"]
+__all__ = ["Dynamics", "Motor", "Simulation", "read_dynamics", "DRIVINGS", "MAX_DELTA", "MIN_DELTA"]
 
 #: How the crank is driven over the steady cycle.
 DRIVINGS = ("constant",)
@@ -22,6 +22,10 @@ MAX_T_END = 3600.0
 #: Largest coefficient of speed fluctuation δ: at δ = 2 the crank would stop (ω_min = ω_m(1 − δ/2));
 #: a machine is designed for δ of 1/5 at most (pumps ~1/30, presses 1/10–1/20, generators 1/200).
 MAX_DELTA = 0.5
+#: Smallest δ: a thousand times tighter than the tightest machines are built for (AC generators
+#: run in parallel at 1/300, aircraft engines at 1/1000). The flywheel grows as 1/δ: below this it
+#: would hold a million times the energy the machine exchanges over its cycle.
+MIN_DELTA = 1e-6
 #: Largest inertia (kg·m²) a flywheel or rotor may have.
 MAX_INERTIA = 1e20
 
@@ -87,9 +91,10 @@ def read_dynamics(table: Any, motor: Any = None) -> Dynamics:
     delta = flywheel = None
     if "delta" in table:
         delta = number(table["delta"], "dynamics.delta")
-        if not 0.0 < delta <= MAX_DELTA:
-            raise SceneError(f"delta = (ω_max − ω_min)/ω_m is a small positive fraction (e.g. 1/20 = 0.05, at most "
-                             f"{MAX_DELTA:g}), got {delta:g}", key="dynamics.delta")
+        if not MIN_DELTA <= delta <= MAX_DELTA:
+            raise SceneError(f"delta = (ω_max − ω_min)/ω_m is a small positive fraction (e.g. 1/20 = 0.05), from "
+                             f"{MIN_DELTA:g} (a thousand times tighter than the tightest machines, 1/1000: the flywheel "
+                             f"grows as 1/δ) to {MAX_DELTA:g}; got {delta:g}", key="dynamics.delta")
     else:
         flywheel = number(table["flywheel"], "dynamics.flywheel", bound=MAX_INERTIA, why=" kg·m²")
         if flywheel < 0.0:
@@ -169,6 +174,7 @@ def read_motor(table: Any) -> Motor:
                                  f"{pts[k - 1][0]:g}", key="motor.torque")
         if pts[0][0] < 0.0:
             raise SceneError(f"torque's speeds start at 0 rpm or more, got {pts[0][0]:g}", key="motor.torque")
+        _check_no_load(pts)
         return Motor(ratio=ratio, torque=tuple(pts))
     missing = [k for k in kloss if k not in table]
     if missing:
@@ -186,3 +192,22 @@ def read_motor(table: Any) -> Motor:
     if not lam > 1.0:
         raise SceneError(f"breakdown λ = M_max/M_rated is more than 1 (about 2–3), got {lam:g}", key="motor.breakdown")
     return Motor(ratio=ratio, power=power, rated_rpm=rated, synchronous_rpm=sync, breakdown=lam)
+
+
+def _check_no_load(pts: list[tuple[float, float]]) -> None:
+    """A torque table must fall to 0 N·m beyond its largest moment (between two rows, or on the
+    line through its last two rows, as it is continued): a motor has a no-load speed. One whose
+    moment keeps growing with speed would speed the crank up without end (the start-up has no
+    steady state, and its ω grows exponentially)."""
+    xs, ys = [p[0] for p in pts], [p[1] for p in pts]
+    k = max(range(len(ys)), key=lambda j: ys[j])
+    if ys[k] <= 0.0:
+        return                      # it never drives: the start-up refuses it (cannot start the load)
+    if any(ys[j] > 0.0 >= ys[j + 1] for j in range(k, len(ys) - 1)):
+        return
+    if ys[-1] > 0.0 and ys[-1] < ys[-2]:
+        return                      # the last rows' line comes down to 0 beyond them
+    raise SceneError(f"torque must fall to 0 N·m at some speed beyond its largest moment ({ys[k]:g} N·m at "
+                     f"{xs[k]:g} rpm; rows are continued by the line through the last two): a motor has a no-load "
+                     "speed, and one whose moment keeps growing would speed the crank up without end; add a row "
+                     "at the no-load speed, [rpm, 0.0]", key="motor.torque")

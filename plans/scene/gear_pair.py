@@ -11,14 +11,17 @@ from dataclasses import dataclass
 from typing import Any, Mapping
 
 from ..errors import SceneError
-from .checks import SHOW, number
+from .checks import SHOW, number, whole
 
-__all__ = ["GearPairSpec", "read_gear_pair", "SHIFTS", "MAX_PAIR_TEETH"]
+__all__ = ["GearPairSpec", "read_gear_pair", "SHIFTS", "MIN_PAIR_TEETH", "MAX_PAIR_TEETH", "STANDARD_TIP_RADIUS",
+           "largest_tip_radius", "default_tip_radius"]
 
 #: The rules for the shifts when x1, x2 are not given.
 SHIFTS = ("none", "no_undercut", "balanced")
 #: Teeth of a wheel of the pair: the generation is drawn tooth by tooth.
 MIN_PAIR_TEETH, MAX_PAIR_TEETH = 5, 500
+#: The standard cutter's tip radius ρ*, in modules (α = 20°, c* = 0.25: c*/(1 − sin α) ≈ 0.38).
+STANDARD_TIP_RADIUS = 0.38
 _KEYS = {"z1", "z2", "module", "pressure_angle", "addendum", "clearance", "x1", "x2", "shift", "tip_radius", "mesh"}
 
 
@@ -26,10 +29,10 @@ _KEYS = {"z1", "z2", "module", "pressure_angle", "addendum", "clearance", "x1", 
 class GearPairSpec:
     """``[gear_pair]``: teeth ``z1`` (the pinion) and ``z2``, ``module`` m (mm), the basic rack
     (``pressure_angle`` α in degrees, ``addendum`` ha*, ``clearance`` c*, ``tip_radius`` ρ of the
-    cutter's tip rounding in modules), and the shifts ``x1``, ``x2`` or the ``shift`` rule
-    ("none"; "no_undercut": the smallest shifts, 0 or more, that avoid undercut; "balanced":
-    x1 = −x2, equal specific sliding at the two ends of the active line). ``mesh`` names two
-    wheels of ``[gears]`` instead of z1, z2, module."""
+    cutter's tip rounding in modules: by default 0.38, or c*/(1 − sin α) where 0.38 does not fit),
+    and the shifts ``x1``, ``x2`` or the ``shift`` rule ("none"; "no_undercut": the smallest shifts,
+    0 or more, that avoid undercut; "balanced": x1 = −x2, equal specific sliding at the two ends of
+    the active line). ``mesh`` names two wheels of ``[gears]`` instead of z1, z2, module."""
 
     z1: int | None = None
     z2: int | None = None
@@ -40,16 +43,37 @@ class GearPairSpec:
     x1: float | None = None
     x2: float | None = None
     shift: str | None = None
-    tip_radius: float = 0.38
+    tip_radius: float = STANDARD_TIP_RADIUS
     mesh: tuple[str, str] | None = None
 
 
 def _teeth(value: Any, key: str) -> int:
-    if isinstance(value, bool) or not isinstance(value, int):
+    z = whole(value)
+    if z is None:
         raise SceneError(f"teeth are a whole number, got {SHOW.repr(value)}", key=key)
-    if not MIN_PAIR_TEETH <= value <= MAX_PAIR_TEETH:
-        raise SceneError(f"a wheel of the pair has {MIN_PAIR_TEETH} … {MAX_PAIR_TEETH} teeth, got {value}", key=key)
-    return value
+    if not MIN_PAIR_TEETH <= z <= MAX_PAIR_TEETH:
+        raise SceneError(f"a wheel of the pair has {MIN_PAIR_TEETH} … {MAX_PAIR_TEETH} teeth, got {z}", key=key)
+    return z
+
+
+def largest_tip_radius(pressure_angle: float, clearance: float) -> float:
+    """The largest tip radius ρ* of the cutter (in modules) that fits its tip corner:
+    c*/(1 − sin α), α in degrees (0.38 for the standard rack, α = 20°, c* = 0.25)."""
+    return clearance / (1.0 - math.sin(math.radians(pressure_angle)))
+
+
+def default_tip_radius(pressure_angle: float, clearance: float) -> float:
+    """ρ* when the scene gives none: the standard 0.38 where it fits the rack's tip corner, else the
+    largest that does (:func:`largest_tip_radius`: 0.3335 at α = 14.5°, c* = 0.25)."""
+    largest = largest_tip_radius(pressure_angle, clearance)
+    return STANDARD_TIP_RADIUS if STANDARD_TIP_RADIUS <= _allowed(largest) else largest
+
+
+def _allowed(largest: float) -> float:
+    """The largest ρ* a scene may write: the bound, or its rounding to the two decimals a designer
+    writes where that is larger (0.38 at α = 20°, c* = 0.25, whose bound is 0.37995); what is given
+    beyond the exact bound is clipped to it."""
+    return max(largest, round(largest, 2)) + 1e-12
 
 
 def read_gear_pair(table: Any) -> GearPairSpec:
@@ -92,11 +116,16 @@ def read_gear_pair(table: Any) -> GearPairSpec:
     c = number(table.get("clearance", 0.25), "gear_pair.clearance", bound=10.0)
     if not 0.0 <= c <= 0.5:
         raise SceneError(f"clearance c* is 0 … 0.5 (0.25 standard), got {c:g}", key="gear_pair.clearance")
-    rho = number(table.get("tip_radius", 0.38), "gear_pair.tip_radius", bound=10.0)
-    largest = c / (1.0 - math.sin(math.radians(alpha)))     # the rounding fills the tip corner (0.38 standard)
-    if not 0.0 <= rho <= round(largest, 2) + 1e-12:
-        raise SceneError(f"tip_radius ρ* (in modules) is 0 … c*/(1 − sin α) = {largest:.4g} (the rounding must fit "
-                         f"the cutter's tip corner), got {rho:g}", key="gear_pair.tip_radius")
+    largest = largest_tip_radius(alpha, c)         # the rounding fills the tip corner (0.38 standard)
+    if "tip_radius" in table:
+        rho = number(table["tip_radius"], "gear_pair.tip_radius", bound=10.0)
+        if not 0.0 <= rho <= _allowed(largest):
+            raise SceneError(f"tip_radius ρ* (in modules) is 0 … c*/(1 − sin α) = {largest:.4g} with "
+                             f"α = {alpha:g}° and c* = {c:g} (the rounding must fit the cutter's tip corner), "
+                             f"got {rho:g}",
+                             key="gear_pair.tip_radius")
+    else:
+        rho = default_tip_radius(alpha, c)
     rho = min(rho, largest)
     has_x = "x1" in table or "x2" in table
     if has_x and "shift" in table:

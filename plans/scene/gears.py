@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from typing import Any, Mapping
 
 from ..errors import SceneError
-from .checks import SHOW, name_of, number
+from .checks import SHOW, name_of, number, whole
 
 #: Teeth of one wheel: 1 … MAX_TEETH (a ring gear of a large reducer has a few hundred).
 MAX_TEETH = 10_000
@@ -102,10 +102,11 @@ def read_gears(table: Mapping[str, Any]) -> GearTrain:
         if f not in known:
             raise SceneError(f"unknown wheel or carrier {f!r}; use one of {', '.join(sorted(known))}",
                              key="gears.fixed")
-    planets = table.get("planets", 1)
-    if isinstance(planets, bool) or not isinstance(planets, int) or not 1 <= planets <= MAX_PLANETS:
+    raw = table.get("planets", 1)
+    planets = whole(raw)
+    if planets is None or not 1 <= planets <= MAX_PLANETS:
         raise SceneError(f"planets is a whole number 1 … {MAX_PLANETS} (equally spaced satellites), "
-                         f"got {SHOW.repr(planets)}", key="gears.planets")
+                         f"got {SHOW.repr(raw)}", key="gears.planets")
     inputs = _inputs(table.get("input", {}), known)
     output = table.get("output")
     if output is not None:
@@ -143,9 +144,10 @@ def _wheel(name: str, spec: Any) -> Wheel:
     _only(spec, _WHEEL_KEYS, key, "a wheel has")
     if "teeth" not in spec:
         raise SceneError("missing teeth: the number of teeth of the wheel", key=f"{key}.teeth")
-    teeth = spec["teeth"]
-    if isinstance(teeth, bool) or not isinstance(teeth, int) or not 1 <= teeth <= MAX_TEETH:
-        raise SceneError(f"teeth is a whole number 1 … {MAX_TEETH}, got {SHOW.repr(teeth)}", key=f"{key}.teeth")
+    teeth = whole(spec["teeth"])
+    if teeth is None or not 1 <= teeth <= MAX_TEETH:
+        raise SceneError(f"teeth is a whole number 1 … {MAX_TEETH}, got {SHOW.repr(spec['teeth'])}",
+                         key=f"{key}.teeth")
     module = None
     if "module" in spec:
         module = number(spec["module"], f"{key}.module", positive=True, bound=MAX_MODULE_MM, why=" mm")
@@ -225,9 +227,10 @@ def read_synthesis(table: Any) -> Synthesis:
     kind = table["type"]
     if not isinstance(kind, str) or kind.strip().upper() not in ("A", "B", "C", "D"):
         raise SceneError(f"type is one of \"A\", \"B\", \"C\", \"D\", got {SHOW.repr(kind)}", key="synthesis.type")
-    planets = table["planets"]
-    if isinstance(planets, bool) or not isinstance(planets, int) or not 2 <= planets <= 12:
-        raise SceneError(f"planets is a whole number 2 … 12, got {SHOW.repr(planets)}", key="synthesis.planets")
+    planets = whole(table["planets"])
+    if planets is None or not 2 <= planets <= 12:
+        raise SceneError(f"planets is a whole number 2 … 12, got {SHOW.repr(table['planets'])}",
+                         key="synthesis.planets")
     ratio = number(table["ratio"], "synthesis.ratio", bound=1e6)
     if abs(ratio) <= 1.0:
         raise SceneError(f"a reducer's ratio is beyond ±1, got {ratio:g}", key="synthesis.ratio")

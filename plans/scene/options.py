@@ -10,7 +10,7 @@ from __future__ import annotations
 from typing import Any, Mapping, Sequence
 
 from ..errors import SceneError
-from .checks import SHOW
+from .checks import SHOW, whole
 from .values import (CYCLE_SHEETS, CYCLE_STARTS, DEFAULT_DRAW, DRAWABLE, FRAME, MAX_POSITIONS, MAX_VELOCITY_PLANS,
                      MIN_CYCLE_POSITIONS, Cycle, Drive, Slider)
 
@@ -40,10 +40,10 @@ def cycle_positions(cycle: Mapping[str, Any]) -> int:
     if "positions" not in cycle:
         raise SceneError('start chooses the first of positions = N; add positions (e.g. 12) or remove start',
                          key="drive.start")
-    n = cycle["positions"]
-    if isinstance(n, bool) or not isinstance(n, int):
+    n = whole(cycle["positions"])
+    if n is None:
         raise SceneError(f"positions is a whole number of equal steps per revolution (e.g. 12), got "
-                         f"{SHOW.repr(n)}", key="drive.positions")
+                         f"{SHOW.repr(cycle['positions'])}", key="drive.positions")
     if not MIN_CYCLE_POSITIONS <= n <= MAX_POSITIONS:
         raise SceneError(f"positions = {n} is out of range: {MIN_CYCLE_POSITIONS} to {MAX_POSITIONS} equal steps per "
                          "revolution (the graphical differentiation needs three chords; one a degree is the most)",
@@ -117,11 +117,11 @@ def read_cycle(keys: Mapping[str, Any], drive: Drive, plans: Mapping[str, Any], 
             raise SceneError(f"unknown point {p!r} to trace; use a name from [points]", key="plans.trace")
     if len(set(trace)) != len(trace):
         raise SceneError("trace lists a point twice", key="plans.trace")
-    at = plans.get("at", list(range(n)))
-    if not isinstance(at, list) or not all(isinstance(k, int) and not isinstance(k, bool) for k in at) \
-            or not all(0 <= k < n for k in at) or len(set(at)) != len(at):
+    raw = plans.get("at", list(range(n)))
+    at = [whole(k) for k in raw] if isinstance(raw, list) else None
+    if at is None or None in at or not all(0 <= k < n for k in at) or len(set(at)) != len(at):
         raise SceneError(f"at lists the position numbers (0 to {n - 1}, each once) drawn on sheets of their own, "
-                         f"e.g. [0, 3]; got {SHOW.repr(at)}", key="plans.at")
+                         f"e.g. [0, 3]; got {SHOW.repr(raw)}", key="plans.at")
     if not at and not set(CYCLE_SHEETS) & set(draw):
         raise SceneError("at = [] draws no position on sheets of its own, and draw holds no sheet of the whole "
                          f"cycle ({', '.join(CYCLE_SHEETS)}): nothing would be drawn; list positions in at, or add "

@@ -55,7 +55,7 @@ class Dyad:
             bad = np.flatnonzero(~valid[sweep])
             if bad.size:
                 i = sweep[bad[0]]
-                raise failure(mech, g, walk, i, f"cannot assemble: {options[int(choice[i])].why(i)}")
+                raise failure(mech, g, walk, i, "cannot assemble", options[int(choice[i])].why(i))
         states[g.m], states[g.n] = m_state, n_state
         sin = conditioning(g, mech, states)
         check_crossing(mech, g, self.reason(), sin, walk)
