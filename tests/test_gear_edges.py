@@ -257,3 +257,32 @@ def test_a_ray_that_does_not_start_at_the_pole_fails(gear_sheet, tmp_path):
     assert code == 1 and len(fails) == 1 and fails[0].startswith("FAIL ray of 1 starts") and "from the pole" in fails[0]
     length = math.hypot(x2 - x1, y2 - y1) / 2
     assert f"{length:.3g} mm" in fails[0]
+
+
+def _idlers(n: int) -> str:
+    """A row of ``n`` wheels, each meshing the next, the first driven."""
+    wheels = "\n".join(f"w{i} = {{ teeth = {20 + i % 3} }}" for i in range(n))
+    meshes = ", ".join(f'["w{i}", "w{i + 1}"]' for i in range(n - 1))
+    return f'[gears]\nmeshes = [{meshes}]\n[gears.wheels]\n{wheels}\n[gears.input]\nw0 = 100.0\n'
+
+
+def test_a_train_of_more_wheels_than_the_bound_is_one_line(tmp_path):
+    """200 idlers in a row took 13 s (120: 60 s on a loaded machine): refused at the bound."""
+    from plans.scene.gears import MAX_WHEELS
+
+    line = refused_line(tmp_path, _idlers(2 * MAX_WHEELS))
+    assert "[gears.wheels]" in line and f"at most {MAX_WHEELS}" in line, line
+
+
+def test_a_row_of_idlers_at_the_bound_turns_as_the_first_wheel_and_the_teeth_say():
+    """MAX_WHEELS idlers in a row: each wheel's speed is n0·(−1)^k·z0/z_k (the idlers between cancel)."""
+    import tomllib
+
+    import plans
+    from plans.scene.gears import MAX_WHEELS
+
+    from fractions import Fraction
+
+    speeds = plans.render(plans.parse_scene(tomllib.loads(_idlers(MAX_WHEELS))), stem="row").report["gears"]["speeds"]
+    for k in (1, 2, MAX_WHEELS - 1):
+        assert Fraction(speeds[f"w{k}"]["rpm_exact"]) == 100 * (-1) ** k * Fraction(20, 20 + k % 3)

@@ -21,6 +21,10 @@ MIN_MODULE_MM, MAX_MODULE_MM = 1e-3, 1e3
 MAX_RPM = 1e7
 #: Planets on one carrier.
 MAX_PLANETS = 24
+#: Wheels of one train: a course's trains have a few dozen at most; the speeds are solved by
+#: exact elimination over fractions, whose time grows as the cube of the wheels (100 idlers in a
+#: row render in about 2 s, 200 in 13 s).
+MAX_WHEELS = 100
 
 _WHEEL_KEYS = {"teeth", "module", "internal", "on", "shaft"}
 _GEAR_KEYS = {"wheels", "carriers", "meshes", "fixed", "planets", "input", "output"}
@@ -78,6 +82,10 @@ def read_gears(table: Mapping[str, Any]) -> GearTrain:
     if not isinstance(wheels_table, Mapping) or not wheels_table:
         raise SceneError("a gear train needs its wheels: [gears.wheels] a = { teeth = 20 }, …", key="gears.wheels")
     carriers = _names(table.get("carriers", []), "gears.carriers", "carrier")
+    if len(wheels_table) > MAX_WHEELS:
+        raise SceneError(f"{len(wheels_table)} wheels: a train takes at most {MAX_WHEELS} (its speeds are solved "
+                         "exactly, in time that grows as the cube of the wheels); split it into trains of fewer "
+                         "wheels", key="gears.wheels")
     wheels = tuple(_wheel(str(name), spec) for name, spec in wheels_table.items())
     names = [w.name for w in wheels]
     clash = next((c for c in carriers if c in names), None)
