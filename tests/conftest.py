@@ -23,49 +23,53 @@ def stem_of(name: str) -> str:
     return name.split("-")[0].split(".")[0]
 
 
-#: How long a worker waits for another worker's render of the demo (s): ten times its ~20 s.
+#: How long a worker waits for the other workers' renders of the demo (s): ten times its ~20 s.
 _DEMO_WAIT_S = 600.0
 
 
 @pytest.fixture(scope="session")
 def demo_rendered(tmp_path_factory):
-    """Every bundled example, linkages and gears, rendered once by ``plans demo`` (what the
-    README's first command puts into output/); read only. Under pytest-xdist the workers share
-    one render: the first to create ``demo.lock`` in the run's shared temporary folder renders,
-    the others wait for ``demo.done`` (which says ``ok`` or why the render failed)."""
+    """Every bundled example, linkages and gears, rendered as ``plans demo`` renders them (what
+    the README's first command puts into output/); read only. Under pytest-xdist the workers
+    share the work: each example is rendered by the worker that first creates its
+    ``demo-K.lock`` in the run's shared temporary folder, and every worker then waits for all
+    the ``demo-K.done`` files (each says ``ok`` or why its render failed)."""
     import os
     import time
 
-    from plans.cli import main
+    from plans.cli import _examples, main
 
     root = tmp_path_factory.getbasetemp()
     if os.environ.get("PYTEST_XDIST_WORKER"):
         root = root.parent                     # this run's folder, shared by its workers
-    out, done = root / "demo", root / "demo.done"
-    try:
-        os.close(os.open(root / "demo.lock", os.O_CREAT | os.O_EXCL | os.O_WRONLY))
-    except FileExistsError:                    # another worker renders it
-        deadline = time.monotonic() + _DEMO_WAIT_S
+    out = root / "demo"
+    out.mkdir(exist_ok=True)
+    scenes = _examples()
+    for k, scene in enumerate(scenes):
+        try:
+            os.close(os.open(root / f"demo-{k}.lock", os.O_CREAT | os.O_EXCL | os.O_WRONLY))
+        except FileExistsError:                # another worker renders this one
+            continue
+        state = f"plans render {scene.name} did not finish"
+        try:
+            code = main(["render", str(scene), "-o", str(out), "-q"])
+            state = "ok" if code == 0 else f"plans render {scene.name} exited {code}"
+        except BaseException as exc:           # the waiting workers must hear of it too
+            state = f"plans render {scene.name} raised {exc!r}"
+            raise
+        finally:
+            tmp = root / f"demo-{k}.done.tmp"
+            tmp.write_text(state, encoding="utf-8")
+            tmp.replace(root / f"demo-{k}.done")     # appears whole
+    deadline = time.monotonic() + _DEMO_WAIT_S
+    for k in range(len(scenes)):
+        done = root / f"demo-{k}.done"
         while not done.exists():
             if time.monotonic() > deadline:
                 pytest.fail(f"the demo render in {out} did not finish within {_DEMO_WAIT_S:.0f} s")
-            time.sleep(0.1)
+            time.sleep(0.05)
         state = done.read_text(encoding="utf-8")
-        assert state == "ok", f"the demo render failed in another worker: {state}"
-        return out
-    state = "plans demo did not finish"
-    try:
-        out.mkdir()
-        code = main(["demo", "-o", str(out), "-q"])
-        state = "ok" if code == 0 else f"plans demo exited {code}"
-    except BaseException as exc:               # the waiting workers must hear of it too
-        state = f"plans demo raised {exc!r}"
-        raise
-    finally:
-        tmp = root / "demo.done.tmp"
-        tmp.write_text(state, encoding="utf-8")
-        tmp.replace(done)                      # appears whole
-    assert state == "ok", state
+        assert state == "ok", f"the demo render failed: {state}"
     return out
 
 
@@ -149,6 +153,16 @@ def plans_cli(argv: list[str], cwd: Path | None = None):
         except SystemExit as exc:             # argparse's usage errors exit as the command would
             code = exc.code if isinstance(exc.code, int) else 2
     return subprocess.CompletedProcess(["plans", *argv], code, out.getvalue(), err.getvalue())
+
+
+def refused_handout(tmp_path: Path, *args: str) -> str:
+    """``plans handout ARGS -o tmp_path/out`` in ``tmp_path``: it must be refused — exit 2, one
+    line on stderr, no output folder — and that line is returned."""
+    r = plans_cli(["handout", *args, "-o", tmp_path / "out"], cwd=tmp_path)
+    lines = r.stderr.strip().splitlines()
+    assert r.returncode == 2 and len(lines) == 1, r.stderr
+    assert not (tmp_path / "out").exists()
+    return lines[0]
 
 
 def refused_line(tmp_path: Path, scene_text: str) -> str:

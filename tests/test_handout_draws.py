@@ -20,7 +20,7 @@ from plans.handout.variants import Variant
 from plans.model import build_mechanism
 from plans.scene import parse_scene
 
-from conftest import plans_cli
+from conftest import refused_handout as _refused
 
 ROOT = Path(__file__).resolve().parent.parent
 EX = ROOT / "plans" / "examples"
@@ -188,14 +188,6 @@ def test_a_rounding_zero_speed_of_a_train_is_not_asked():
     assert 0.0 < abs(report["gears"]["speeds"]["H"]["rpm"]) < 1e-12
     got = {a.symbol: a.value for a in asked(scene, report)}
     assert "n_{H}" not in got and math.isclose(got["n_{2}"], report["gears"]["speeds"]["2"]["rpm"])
-
-
-def _refused(tmp_path: Path, *args: str) -> str:
-    r = plans_cli(["handout", *args, "-o", tmp_path / "out"], cwd=tmp_path)
-    lines = r.stderr.strip().splitlines()
-    assert r.returncode == 2 and len(lines) == 1, r.stderr
-    assert not (tmp_path / "out").exists()
-    return lines[0]
 
 
 def _with(tmp_path: Path, source: Path, old: str, new: str) -> Path:

@@ -21,7 +21,7 @@ from plans.handout import asked, kind_of, random_variants, variant_asked
 from plans.layout import measure_layout
 from plans.scene import parse_scene
 
-from conftest import plans_cli
+from conftest import refused_handout as _refused
 
 ROOT = Path(__file__).resolve().parent.parent
 EX = ROOT / "examples"
@@ -146,14 +146,6 @@ def test_forces_asked_balance_agrees_with_the_lever_and_power():
         assert math.isclose(mb, f["power"]["moment"], rel_tol=1e-9)
         reactions = [a for a in variant_asked(d) if a.symbol.startswith("R_")]
         assert len(reactions) == len(f["reactions"])
-
-
-def _refused(tmp_path: Path, *args: str) -> str:
-    r = plans_cli(["handout", *args, "-o", tmp_path / "out"], cwd=tmp_path)
-    lines = r.stderr.strip().splitlines()
-    assert r.returncode == 2 and len(lines) == 1, r.stderr
-    assert not (tmp_path / "out").exists()
-    return lines[0]
 
 
 @pytest.mark.parametrize("variant, words", [

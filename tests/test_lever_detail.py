@@ -13,7 +13,6 @@ import numpy as np
 import pytest
 
 from plans.checking import inspect_svg
-from plans.cli import main
 from plans.constructions.detail import NEAR_MM
 from plans.constructions.lever_detail import lever_crowd
 from plans.constructions.plan_values import Plan, PlanPoint, PlanVector
@@ -36,11 +35,20 @@ CROWDED = (("class3_forces", 11, 3, "lever"), ("class3_forces", 11, 5, "lever"),
 
 @pytest.fixture(scope="module")
 def handouts(tmp_path_factory) -> dict[tuple[str, int], Path]:
+    """The answer keys' SVG sheets of ``plans handout SCENE --random 6 --seed S``, each variant in
+    its folder as the handout writes it (drawn by the handout's own random_variants; the PDFs
+    and the assignment sheets, which these tests do not read, are not made)."""
+    from plans.handout import random_variants
+
     out = {}
     for scene, seed in sorted({(s, d) for s, d, *_ in CROWDED}):
         dest = tmp_path_factory.mktemp(scene)
-        assert main(["handout", str(EXAMPLES / f"{scene}.toml"), "--random", "6", "--seed", str(seed),
-                     "-o", str(dest), "-q"]) == 0
+        _, drawn = random_variants(EXAMPLES / f"{scene}.toml", 6, seed)
+        for d in drawn:
+            (dest / d.name).mkdir()
+            for name, text in d.sheets.files.items():
+                if name.endswith(".svg"):
+                    (dest / d.name / name).write_text(text, encoding="utf-8")
         out[(scene, seed)] = dest
     return out
 
