@@ -203,6 +203,20 @@ def test_pair_sheets_layout_is_clean(pair_sheets):
         assert not any(report.counts.values()), (svg.name, report)
 
 
+def test_pair_sheets_write_negative_numbers_with_the_minus_sign(pair_sheets):
+    """A negative specific sliding or shift in the notes and title reads −5.955, not -5.955 (a
+    hyphen right after a letter, digit, bracket or dot is not a sign: B_1B_2, 1e-05)."""
+    import re
+
+    hyphen = re.compile(r"(?<![\w).])-(?=\.?\d)")
+    signed = 0
+    for svg in sorted(pair_sheets.glob("pair_*.svg")):
+        words = sheet_words(svg.read_text(encoding="utf-8"))
+        assert not hyphen.findall(words), (svg.name, [w for w in words.splitlines() if hyphen.search(w)][:2])
+        signed += len(re.findall(r"−\.?\d", words))
+    assert signed >= 3            # the balanced pair's x2 and the specific slidings at B1, B2
+
+
 def test_cutting_sheet_says_whether_undercut(pair_sheets):
     assert "it is undercut" in sheet_words((pair_sheets / "pair_12_unshifted-cutting.svg").read_text())
     assert "not undercut" in sheet_words((pair_sheets / "pair_12_no_undercut-cutting.svg").read_text())

@@ -18,7 +18,7 @@ import svgwrite
 from .canvas import Canvas, fmt
 from .style import Style
 from .font_metrics import BOOK
-from .text import SUB_SIZE, UNKNOWN_EM, Box, box, plain, runs, width, wrap
+from .text import SUB_SIZE, UNKNOWN_EM, Box, box, minus_signs, plain, runs, width, wrap
 
 __all__ = ["Format", "FORMATS", "choose_format", "TitleBlock", "new_sheet", "FRAME_MM", "TITLE_BLOCK_MM",
            "LARGEST"]
@@ -211,10 +211,11 @@ def _title_block(dwg: svgwrite.Drawing, canvas: Canvas, frame, fmt_: Format, blo
 
 def note_lines(canvas: Canvas, parent, lines: Sequence[str], style: Style) -> None:
     """Lines of small text at the bottom left of the drawing area (why a plan is empty, which
-    rule gave way), each wrapped at word boundaries to the area's width."""
+    rule gave way), each wrapped at word boundaries to the area's width; a negative number with
+    the minus sign."""
     a = canvas.area
     room = a.x1 - a.x0 - 6.0
-    rows = [row for line in lines for row in wrap(line, room, style.small_text)]
+    rows = [row for line in lines for row in wrap(minus_signs(line), room, style.small_text)]
     y = a.y1 - 2.0 - 4.0 * (len(rows) - 1)
     for k, row in enumerate(rows):
         canvas.text(parent, (a.x0 + 3.0, y + 4.0 * k), row, size=style.small_text)

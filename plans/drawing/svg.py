@@ -29,7 +29,6 @@ writer's rounding (mm); the checker takes its tolerance from its own rules, neve
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import dataclass
 from typing import Sequence
 
@@ -44,7 +43,7 @@ from .marks import LABEL_ROOM_MM, arrow as _arrow, bounds, markup as _markup, un
 from .scheme import scheme_layers
 from .sheet import FORMATS, TitleBlock, choose_format, new_sheet, note_lines
 from .style import Style
-from .text import ASCENT, DESCENT, runs, width as text_width
+from .text import ASCENT, DESCENT, minus_signs, runs, width as text_width
 from .. import linalg as la
 from ..spatial import PointGrid
 
@@ -70,15 +69,6 @@ class Heading:
     def __post_init__(self) -> None:
         object.__setattr__(self, "position", minus_signs(self.position))
 
-
-#: A hyphen that writes a negative number: before a digit or a decimal point and a digit, not
-#: after a letter, digit, closing bracket or dot (``I(0-2-3)``, ``1e-05``, a name ``S-1``).
-_NEGATIVE = re.compile(r"(?<![\w).])-(?=\.?\d)")
-
-
-def minus_signs(text: str) -> str:
-    """``text`` with the hyphen of every negative number replaced by the minus sign U+2212."""
-    return _NEGATIVE.sub("−", text)
 
 
 def direction_text(dx: float, dy: float) -> str:

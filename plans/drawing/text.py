@@ -62,6 +62,16 @@ def runs(label: str, *, digits: bool = False) -> tuple[Run, ...]:
     return tuple(r for r in out if r.text)
 
 
+#: A hyphen that writes a negative number: before a digit or a decimal point and a digit, not
+#: after a letter, digit, closing bracket or dot (``I(0-2-3)``, ``1e-05``, a name ``S-1``).
+_NEGATIVE = re.compile(r"(?<![\w).])-(?=\.?\d)")
+
+
+def minus_signs(text: str) -> str:
+    """``text`` with the hyphen of every negative number replaced by the minus sign U+2212."""
+    return _NEGATIVE.sub("−", text)
+
+
 def plain(label: str) -> str:
     """A label's characters without markup (``φ_1`` → ``φ1``)."""
     return "".join(r.text for r in runs(label))
