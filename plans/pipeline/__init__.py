@@ -39,8 +39,8 @@ from .sheets.plans import plan_sheets
 from .sheets.scheme import scheme_sheets
 from .sheets.dynamics import dynamics_sheets, dynamics_warnings
 from .sheets.gear_pair import pair_report, pair_sheets
-from .stages import (force_analysis, machine_motion, machine_startup, record_stages, solve_motion, solve_scene,
-                     true_speed_motion)
+from .stages import (assembly_analysis, force_analysis, machine_motion, machine_startup, record_stages, solve_motion,
+                     solve_scene, true_speed_motion)
 
 __all__ = ["Rendered", "Sheet", "Sheets", "render", "render_scene", "report", "solve_scene", "record_stages",
            "stem_of", "at_rest", "read_scene", "LEVER_RTOL", "MAX_STEM_CHARS"]
@@ -88,6 +88,7 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
         scales = scene_scales(scene, motion, rest)
         forces = force_analysis(scene, motion, cycle)
         started = machine_startup(scene, machine)
+        assembled = assembly_analysis(scene, motion)
     except PlansError as exc:
         raise exc.in_file(where) if where and hasattr(exc, "in_file") else exc
     check_triads(motion, path)
@@ -107,7 +108,7 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
         sheets, levers = force_sheets(scene, motion, forces, scales, own, stem=stem, path=path, style=style)
         files.update(sheets)
         warnings.extend(force_warnings(scene, motion, forces, levers, own, path))
-    data = report(scene, motion, scales, forces, levers)
+    data = report(scene, motion, scales, forces, levers, assembled)
     if cycle is not None:
         sheets, data["cycle"] = cycle_sheets(scene, cycle, scales, stem, style)
         files.update(sheets)

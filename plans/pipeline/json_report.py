@@ -15,6 +15,7 @@ from ..constructions import Scales
 from ..constructions.forces import Lever
 from ..constructions.kinetostatics import lever_scale, lever_value
 from ..kinematics import Motion
+from ..kinematics.assemblies import GroupAssemblies
 from ..kinematics.centres import Centre, Centres
 from ..kinetostatics import Forces
 from ..scene import Scene
@@ -23,12 +24,15 @@ __all__ = ["report", "report_text"]
 
 
 def report(scene: Scene, motion: Motion, scales: Scales, forces: Forces | None = None,
-           levers: Mapping[int, Lever] | None = None) -> dict:
+           levers: Mapping[int, Lever] | None = None,
+           assemblies: list[Mapping[str, GroupAssemblies]] | None = None) -> dict:
     """The JSON report: structure and, per position, points, links, scales, conditioning,
     instantaneous centres and the special points of class III groups (SI), all read off
     ``motion`` (the special points as its second, special-point solution gives them); with
     ``forces``, the force analysis (:func:`_forces_at`) and, at the positions of ``levers``
-    (position → Zhukovsky's lever), the lever's balancing element (:func:`_lever_report`)."""
+    (position → Zhukovsky's lever), the lever's balancing element (:func:`_lever_report`); with
+    ``assemblies`` (position → group name → its real assemblies), each position's
+    ``assemblies``: group name → ``{"count": n, "poses": [{"points": {P: [x, y]}, "chosen": b}]}`` (m)."""
     mech = motion.mechanism
     key = "angle" if mech.drive.kind.angular else "displacement"
     positions = []
@@ -67,6 +71,8 @@ def report(scene: Scene, motion: Motion, scales: Scales, forces: Forces | None =
             pos["special_points"] = {g: {p.name: _special(p, i) for p in pts} for g, pts in special_pts.items()}
         if forces is not None:
             pos["forces"] = _forces_at(scene, forces, i)
+        if assemblies is not None:
+            pos["assemblies"] = {g: found.as_dict() for g, found in assemblies[i].items()}
         positions.append(pos)
     data = {"title": scene.title, "structure": motion.structure.as_dict(), "positions": positions}
     for i, result in (levers or {}).items():

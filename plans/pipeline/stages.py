@@ -15,6 +15,7 @@ import numpy as np
 
 from ..dynamics import MachineDynamics, Startup, at_true_speed, machine_dynamics, startup
 from ..kinematics import Motion, analyse
+from ..kinematics.assemblies import GroupAssemblies, assemblies
 from ..kinematics.cycle import Cycle, solve_cycle
 from ..kinetostatics import Forces, Travel, forces_following, solve_forces
 from ..model import build_mechanism
@@ -22,7 +23,8 @@ from ..scene import Scene
 from ..scene.drive import check_train_speed
 from ..structure import analyse_structure
 
-__all__ = ["record_stages", "solve_scene", "solve_motion", "force_analysis", "output_travel", "machine_motion"]
+__all__ = ["record_stages", "solve_scene", "solve_motion", "force_analysis", "output_travel", "machine_motion",
+           "assembly_analysis"]
 
 #: The stages run, in order, while :func:`record_stages` is active (None otherwise).
 _stages: list[str] | None = None
@@ -104,6 +106,17 @@ def output_travel(scene: Scene, cycle: Cycle | None) -> Travel | None:
     out, ext = cycle.output, cycle.extreme_output
     return Travel(link=out.link, kind=out.kind, s=out.s, v=out.v, low=float(ext.s[0]), high=float(ext.s[1]),
                   scale=float(np.max(np.abs(out.v))))
+
+
+def assembly_analysis(scene: Scene, motion: Motion) -> list[dict[str, GroupAssemblies]] | None:
+    """Every group's real assemblies at every analysed position (position → group name →
+    :class:`~plans.kinematics.assemblies.GroupAssemblies`) when the scene asks for them
+    (``draw = [..., "assemblies"]``); None otherwise (then nothing is computed). The
+    ``-assemblies`` sheet is to come: for now they go into the JSON report only."""
+    if "assemblies" not in scene.draw:
+        return None
+    _ran("assemblies")
+    return [assemblies(motion, i) for i in range(len(motion))]
 
 
 def machine_motion(scene: Scene, cycle: Cycle | None) -> MachineDynamics | None:

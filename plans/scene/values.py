@@ -21,7 +21,7 @@ from .gears import GearTrain, Synthesis
 FRAME = "0"
 #: The sheets a scene may draw (``[plans] draw``), in the order they are drawn.
 DRAWABLE = ("scheme", "velocity", "acceleration", "centres", "positions", "diagrams", "velocities", "forces", "lever",
-            "gears", "dynamics", "startup", "meshing", "cutting")
+            "gears", "dynamics", "startup", "meshing", "cutting", "assemblies")
 #: What needs the force analysis (kinetostatics): the force plans and Zhukovsky's lever.
 FORCE_SHEETS = ("forces", "lever")
 #: Sheets of the whole cycle: they need ``[drive] positions = N``.

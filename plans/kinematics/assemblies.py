@@ -1,0 +1,355 @@
+"""Every real assembly of each Assur group at one position, the earlier groups of the structural
+formula held in the poses the motion gives them (seed 002's analytical method).
+
+* Class II groups: the closed forms of :mod:`plans.kinematics.groups` give both branches of
+  the two-branch forms (RRR, RRP, RPR) and the one pose of the line–line forms (PRP, RPP).
+* Class III and IV groups of revolute pairs: all angles but one, φ, are eliminated (the seed's
+  system (6)); the remaining angle ψ follows from quadratics in u = tan(ψ/2) (its (7)), whose
+  discriminants decide reality. The residual f(φ) left by the elimination is a trigonometric
+  polynomial of degree ≤ 4; its real roots are all bracketed by a certified search
+  (:func:`_roots`), refined by Brent's method, completed by the quadratics and polished by a
+  Newton step on the group's pair equations (:class:`~plans.kinematics.generic.GroupEquations`).
+  Groups with a prismatic pair are refused (a SceneError naming the group).
+
+Lengths in metres, angles in radians, counter-clockwise positive; a link's pose maps a local
+(sketch) point x to o + R(θ)·x, as everywhere in plans.kinematics.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Mapping
+
+import numpy as np
+
+from ..errors import SceneError
+from ..structure import ComplexGroup, Group, Pair
+from .generic import GroupEquations
+from .groups import candidates
+from .state import LinkState
+from .tolerances import ASSEMBLY_RTOL
+from .. import linalg as la
+
+__all__ = ["Assembly", "GroupAssemblies", "assemblies", "group_assemblies", "dyad_pairs", "SAME_RTOL",
+           "GRID", "residual_function"]
+
+#: Two poses are one assembly when no point of the group differs by more than this × size.
+SAME_RTOL = 1e-9
+#: Cells of the first grid over φ ∈ [−π, π) (each cell is then refined or excluded, see :func:`_roots`).
+GRID = 720
+#: Smallest cell of the certified search, rad: a cell this small that can hold a root of f without
+#: a sign change is a (near-)tangency, tried as a candidate root.
+MIN_CELL = 1e-9
+#: An assembly's pair equations must hold to this × size after polishing (m; angles × size).
+POLISH_RTOL = 1e-12
+
+
+@dataclass(frozen=True)
+class Assembly:
+    """One real assembly of a group: world ``points`` of the group's links (m) and the links'
+    ``poses`` (x_o, y_o in m, θ in rad); ``chosen`` when it is the motion's own pose."""
+
+    points: Mapping[str, tuple[float, float]]
+    poses: Mapping[str, tuple[float, float, float]]
+    chosen: bool
+
+
+@dataclass(frozen=True)
+class GroupAssemblies:
+    """Every real assembly of group ``group`` at one position (the motion's pose among them)."""
+
+    group: str
+    assemblies: tuple[Assembly, ...]
+
+    @property
+    def count(self) -> int:
+        return len(self.assemblies)
+
+    def as_dict(self) -> dict:
+        """The JSON report's entry: ``{"count": n, "poses": [{"points": {P: [x, y]}, "chosen": b}]}`` (m)."""
+        return {"count": self.count,
+                "poses": [{"points": {p: [float(x), float(y)] for p, (x, y) in a.points.items()},
+                           "chosen": a.chosen} for a in self.assemblies]}
+
+
+def assemblies(motion, i: int) -> dict[str, GroupAssemblies]:
+    """Every Assur group's real assemblies at position i (group name → :class:`GroupAssemblies`),
+    each with the earlier groups in the motion's poses."""
+    return {g.name: group_assemblies(motion, g, i) for g in motion.structure.groups}
+
+
+def _at(motion, i: int) -> dict[str, LinkState]:
+    """Every link's state at position i alone (N = 1)."""
+    return {n: LinkState(s.theta[i:i + 1], s.origin[i:i + 1]) for n, s in motion.links.items()}
+
+
+def dyad_pairs(g: Group) -> tuple[Pair, ...]:
+    """A class II group's pairs in the form of :class:`~plans.kinematics.generic.GroupEquations`."""
+    return tuple(Pair(j.kind, a, b, j.point, j.prismatic)
+                 for j, a, b in ((g.d, g.m, g.d.other), (g.e, g.m, g.n), (g.f, g.n, g.f.other)))
+
+
+def group_assemblies(motion, g: Group | ComplexGroup, i: int) -> GroupAssemblies:
+    """The real assemblies of group ``g`` at position i; the one the motion has is ``chosen``
+    (matched within SAME_RTOL × size of every point)."""
+    mech = motion.mechanism
+    size = mech.size
+    known = _at(motion, i)
+    if isinstance(g, Group):
+        poses = [{g.m: c.m, g.n: c.n} for c in candidates(g, mech, known, ASSEMBLY_RTOL * size) if bool(c.valid[0])]
+    else:
+        poses = _complex(mech, g, known)
+    found: list[dict[str, tuple[float, float]]] = []
+    kept: list[dict[str, LinkState]] = []
+    for pose in poses:
+        pts = _points(mech, pose)
+        if not any(_same(pts, f, size) for f in found):
+            found.append(pts)
+            kept.append(pose)
+    own = {n: known[n] for n in g.links}
+    mine = _points(mech, own)
+    chosen = next((k for k, f in enumerate(found) if _same(mine, f, size)), None)
+    if chosen is None:          # not met by the enumeration (it never is, in the tests): listed as is
+        found.append(mine)
+        kept.append(own)
+        chosen = len(found) - 1
+    out = [Assembly(pts, {n: (float(s.origin[0, 0]), float(s.origin[0, 1]), float(s.theta[0]))
+                          for n, s in pose.items()}, k == chosen)
+           for k, (pts, pose) in enumerate(zip(found, kept))]
+    out.sort(key=lambda a: tuple(c for p in sorted(a.points) for c in a.points[p]))     # order by geometry
+    return GroupAssemblies(g.name, tuple(out))
+
+
+def _points(mech, pose: Mapping[str, LinkState]) -> dict[str, tuple[float, float]]:
+    """World position of every point of the links in ``pose`` (m)."""
+    out: dict[str, tuple[float, float]] = {}
+    for name, s in pose.items():
+        for p, x in mech.links[name].local.items():
+            if p not in out:
+                w = s.point(x)[0]
+                out[p] = (float(w[0]), float(w[1]))
+    return out
+
+
+def _same(a: Mapping[str, tuple[float, float]], b: Mapping[str, tuple[float, float]], size: float) -> bool:
+    return all(math.hypot(a[p][0] - b[p][0], a[p][1] - b[p][1]) <= SAME_RTOL * size for p in a)
+
+
+# --- class III and IV: the elimination ------------------------------------------------------
+
+@dataclass(frozen=True)
+class _Elimination:
+    """An all-revolute group reduced to two angles: φ (the pose angle of link ``x``) and ψ (of
+    link ``y``, pinned at the known world point ``pivot``, its local point ``y0``). Two
+    conditions are left, k = 0, 1: |pivot + R(ψ)·v_k − (c_k + R(φ)·s_k)| = l_k (m)."""
+
+    x: str
+    y: str
+    pivot: np.ndarray
+    y0: np.ndarray
+    v: np.ndarray        # (2, 2) local vectors on y
+    c: np.ndarray        # (2, 2) world points
+    s: np.ndarray        # (2, 2) local vectors on x
+    l: np.ndarray        # (2,) lengths
+    x_at: tuple          # how x is placed: ("pin", world point, local point) or ("on_y", local on y, local on x)
+
+    def coefficients(self, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """A, B, D (2, n) of A cos ψ + B sin ψ = D, the two conditions at angles ``phi`` (n,):
+        with w = c + R(φ)s − pivot, A = 2 v·w, B = 2 v×w, D = |v|² + |w|² − l² (m²)."""
+        cp, sp = np.cos(phi), np.sin(phi)
+        out = []
+        for k in (0, 1):
+            sx, sy = self.s[k]
+            wx = self.c[k, 0] - self.pivot[0] + cp * sx - sp * sy
+            wy = self.c[k, 1] - self.pivot[1] + sp * sx + cp * sy
+            vx, vy = self.v[k]
+            out.append((2.0 * (vx * wx + vy * wy), 2.0 * (vx * wy - vy * wx),
+                        vx * vx + vy * vy + wx * wx + wy * wy - self.l[k] ** 2))
+        return tuple(np.array([o[j] for o in out]) for j in range(3))
+
+
+def residual_function(e: _Elimination, size: float):
+    """f(φ) = (N_c² + N_s² − Δ²)/size⁸, Δ = A₀B₁ − A₁B₀, N_c = D₀B₁ − D₁B₀, N_s = A₀D₁ − A₁D₀:
+    zero exactly where the two linear conditions on (cos ψ, sin ψ) have a solution on the unit
+    circle (Cramer's rule: cos ψ = N_c/Δ, sin ψ = N_s/Δ). A, B, D are of degree 1 in cos φ,
+    sin φ, so f is a trigonometric polynomial of degree ≤ 4: at most 8 roots on the circle."""
+    scale = size ** -8
+
+    def f(phi):
+        a, b, d = e.coefficients(np.atleast_1d(np.asarray(phi, dtype=float)))
+        det = a[0] * b[1] - a[1] * b[0]
+        nc = d[0] * b[1] - d[1] * b[0]
+        ns = a[0] * d[1] - a[1] * d[0]
+        return (nc * nc + ns * ns - det * det) * scale
+    return f
+
+
+def _complex(mech, g: ComplexGroup, known: dict[str, LinkState]) -> list[dict[str, LinkState]]:
+    """Every real assembly of a class III/IV group of revolute pairs (the other links at ``known``)."""
+    if any(p.kind != "R" for p in g.pairs):
+        raise SceneError(f"group {g.name} (form {g.form}) has a prismatic pair: its assemblies are not yet enumerated "
+                         "for that form (only class III and IV groups of revolute pairs); leave \"assemblies\" out of "
+                         "draw", key="plans.draw")
+    e = _eliminate(mech, g, known)
+    f = residual_function(e, mech.size)
+    eq = GroupEquations(mech, g.links, g.pairs)
+    out = []
+    for phi in _roots(f):
+        for psi in _psi(e, phi):
+            pose = _pose(mech, g, e, known, phi, psi)
+            q = eq.pose(pose)
+            # one polishing Newton step on the group's own pair equations (generic.py)
+            res = eq.newton(q, known)
+            if res.converged and res.residual <= POLISH_RTOL * mech.size:
+                out.append({n: s for n, s in eq.states(res.q, known).items() if n in eq.col})
+    return out
+
+
+def _world(mech, known: Mapping[str, LinkState], pair: Pair) -> np.ndarray:
+    """World position (2,) of an outer pin, from its known link."""
+    return known[pair.b].point(mech.links[pair.b].local[pair.point])[0]
+
+
+def _eliminate(mech, g: ComplexGroup, known: Mapping[str, LinkState]) -> _Elimination:
+    """The two-angle reduction of ``g``: a class III group's φ is its base link's angle and ψ its
+    first rod's; a class IV group's φ and ψ are the angles of its two links with outer pairs."""
+    loc = {n: mech.links[n].local for n in g.links}
+    if g.base is not None:
+        r0, *others = g.rods
+        y, y0 = r0.link, loc[r0.link][r0.outer.point]
+        b0 = loc[g.base][r0.inner.point]
+        v = loc[y][r0.inner.point] - y0
+        c = np.array([_world(mech, known, r.outer) for r in others])
+        s = np.array([b0 - loc[g.base][r.inner.point] for r in others])
+        l = np.array([float(la.norm(loc[r.link][r.inner.point] - loc[r.link][r.outer.point])) for r in others])
+        return _Elimination(g.base, y, _world(mech, known, r0.outer), y0, np.array([v, v]), c, s, l,
+                            ("on_y", loc[y][r0.inner.point], b0))
+    ox, oy = g.outer
+    x, y = ox.a, oy.a
+    rods = [n for n in g.links if n not in (x, y)]
+    v, s, l = [], [], []
+    for rod in rods:
+        pins = {p.other(rod): p.point for p in g.inner if rod in (p.a, p.b)}
+        if set(pins) != {x, y}:
+            raise SceneError(f"group {g.name}: its assemblies are not yet enumerated for this form (the links with "
+                             "outer pairs are not opposite in the contour); leave \"assemblies\" out of draw",
+                             key="plans.draw")
+        v.append(loc[y][pins[y]] - loc[y][oy.point])
+        s.append(loc[x][pins[x]] - loc[x][ox.point])
+        l.append(float(la.norm(loc[rod][pins[x]] - loc[rod][pins[y]])))
+    px = _world(mech, known, ox)
+    return _Elimination(x, y, _world(mech, known, oy), loc[y][oy.point], np.array(v), np.array([px, px]),
+                        np.array(s), np.array(l), ("pin", px, loc[x][ox.point]))
+
+
+def _roots(f) -> list[float]:
+    """Every real root of the trigonometric polynomial f on [−π, π) (rad).
+
+    Bracketing, certified: f's Fourier coefficients c_k are exact from 64 samples (its degree is
+    ≤ 4, far below the 32 the samples resolve), so |f'| ≤ L = Σ k·|c_k| (every computed k, the
+    zero ones included). A cell [a, b] whose ends have one sign and |f(a)| + |f(b)| > L·(b − a)
+    holds no root (a root t would give |f(a)| ≤ L(t − a) and |f(b)| ≤ L(b − t)). The circle is
+    cut into GRID cells; a cell with a sign change gives a root by Brent's method, an excluded
+    cell none, any other is halved, down to MIN_CELL: what is left is a (near-)double root (a
+    tangency, where two assemblies merge), refined by minimising |f| over the run of such
+    cells, and kept when |f| is rounding there (the completion's polish decides, in the end)."""
+    from scipy.optimize import brentq, minimize_scalar     # only when a scene asks for the assemblies
+
+    n = 64
+    samples = f(-math.pi + 2.0 * math.pi * np.arange(n) / n)
+    c = np.fft.rfft(samples) / n
+    k = np.arange(len(c))
+    lip = float(np.sum(2.0 * k * np.abs(c))) * (1.0 + 1e-9)
+    noise = 1e-12 * float(np.max(np.abs(samples)) + 1e-300)      # f's rounding, relative to its size
+    a = -math.pi + 2.0 * math.pi * np.arange(GRID) / GRID
+    b = a + 2.0 * math.pi / GRID
+    fa, fb = f(a), f(b)
+    roots: list[float] = [float(x) for x in a[fa == 0.0]]
+    leftovers: list[tuple[float, float]] = []
+    while a.size:
+        change = fa * fb < 0.0
+        roots += [brentq(lambda t: float(f(t)[0]), lo, hi, xtol=1e-15, rtol=1e-15) for lo, hi in zip(a[change], b[change])]
+        doubt = ~change & (np.abs(fa) + np.abs(fb) <= lip * (b - a) + noise) & (fb != 0.0)
+        a, b, fa, fb = a[doubt], b[doubt], fa[doubt], fb[doubt]
+        if a.size == 0:
+            break
+        if b[0] - a[0] < MIN_CELL or a.size > 100000:
+            leftovers += list(zip(a, b))
+            break
+        m = 0.5 * (a + b)
+        fm = f(m)
+        roots += [float(x) for x in m[fm == 0.0]]
+        a, b, fa, fb = np.concatenate([a, m]), np.concatenate([m, b]), np.concatenate([fa, fm]), np.concatenate([fm, fb])
+    for lo, hi in _runs(leftovers):
+        sign = 1.0 if f(0.5 * (lo + hi))[0] >= 0.0 else -1.0
+        best = minimize_scalar(lambda t: sign * float(f(t)[0]), bounds=(lo, hi), method="bounded",
+                               options={"xatol": 1e-15})
+        if abs(float(f(best.x)[0])) <= 1e3 * noise:
+            roots.append(float(best.x))
+    return sorted(roots)
+
+
+def _runs(cells: list[tuple[float, float]]) -> list[tuple[float, float]]:
+    """Adjacent cells joined into runs (lo, hi)."""
+    out: list[list[float]] = []
+    for lo, hi in sorted(cells):
+        if out and lo <= out[-1][1] + 1e-15:
+            out[-1][1] = max(out[-1][1], hi)
+        else:
+            out.append([lo, hi])
+    return [(lo, hi) for lo, hi in out]
+
+
+def _psi(e: _Elimination, phi: float) -> list[float]:
+    """ψ at a root φ: the roots of the first condition's quadratic in u = tan(ψ/2) that satisfy
+    the second one (both, where the two conditions coincide)."""
+    a, b, d = (x[:, 0] for x in e.coefficients(np.array([phi])))
+    # Seed 002, (6) → (7): A cos ψ + B sin ψ = D with cos ψ = (1 − u²)/(1 + u²), sin ψ = 2u/(1 + u²)
+    # is (A + D)u² − 2Bu + (D − A) = 0; its discriminant /4, A² + B² − D², decides whether the
+    # condition has real ψ (≥ 0), rounding clipped to 0 (a rod stretched straight).
+    disc = a[0] ** 2 + b[0] ** 2 - d[0] ** 2
+    if disc < -1e-9 * (a[0] ** 2 + b[0] ** 2):
+        return []
+    r = math.sqrt(max(disc, 0.0))
+    out = []
+    for sign in (1.0, -1.0):
+        # u = (B ± √disc)/(A + D) = (D − A)/(B ∓ √disc): whichever form is better conditioned
+        num, den = b[0] + sign * r, a[0] + d[0]
+        alt = (d[0] - a[0], b[0] - sign * r)
+        if math.hypot(*alt) > math.hypot(num, den):
+            num, den = alt
+        psi = 2.0 * math.atan2(num, den)
+        miss = abs(a[1] * math.cos(psi) + b[1] * math.sin(psi) - d[1])
+        if miss <= 1e-6 * (abs(a[1]) + abs(b[1]) + abs(d[1])):
+            out.append(psi)
+    return out
+
+
+def _placed(theta: float, world: np.ndarray, local: np.ndarray) -> LinkState:
+    """The pose with angle θ putting local point ``local`` at world point ``world``."""
+    cs, sn = math.cos(theta), math.sin(theta)
+    o = np.array([world[0] - (cs * local[0] - sn * local[1]), world[1] - (sn * local[0] + cs * local[1])])
+    return LinkState(np.array([theta]), o[None, :])
+
+
+def _pose(mech, g: ComplexGroup, e: _Elimination, known: Mapping[str, LinkState], phi: float, psi: float
+          ) -> dict[str, LinkState]:
+    """Every link of ``g`` (and the known ones) placed from φ, ψ: y on its pivot, x on its pin
+    (or on y's point, for a class III base), each other link on two of its pins."""
+    states = dict(known)
+    states[e.y] = _placed(psi, e.pivot, e.y0)
+    how, p1, p2 = e.x_at
+    world = p1 if how == "pin" else states[e.y].point(p1)[0]
+    states[e.x] = _placed(phi, world, p2)
+    for name in g.links:
+        if name in (e.x, e.y):
+            continue
+        pins = [(p.point, p.other(name)) for p in g.pairs if name in (p.a, p.b) and p.other(name) in states]
+        (pa, la_), (pb, lb) = pins[:2]
+        loc = mech.links[name].local
+        wa = states[la_].point(mech.links[la_].local[pa])[0]
+        wb = states[lb].point(mech.links[lb].local[pb])[0]
+        d, dl = wb - wa, loc[pb] - loc[pa]
+        states[name] = _placed(math.atan2(d[1], d[0]) - math.atan2(dl[1], dl[0]), wa, loc[pa])
+    return states
