@@ -118,7 +118,7 @@ def _brute(motion, g, i: int, starts: int = 400, seed: int = 7) -> list[dict[str
             q0 += [w[0] - (math.cos(t) * loc[0] - math.sin(t) * loc[1]),
                    w[1] - (math.sin(t) * loc[0] + math.cos(t) * loc[1]), t]
         fit = least_squares(lambda q: eq.residual(eq.states(q[None, :], known))[0] / size, np.array(q0),
-                            xtol=1e-15, ftol=1e-15, gtol=1e-15)
+                            xtol=1e-10, ftol=1e-10, gtol=1e-10)   # Newton polishes it below
         res = eq.newton(fit.x[None, :], known)
         if not (res.converged and res.residual <= 1e-12 * size):
             continue
@@ -139,11 +139,11 @@ def _agree(motion, g, i: int, starts: int = 400) -> int:
     return found.count
 
 
-@pytest.mark.parametrize("name", ["class3_six_link", "class4_six_link"])
+@pytest.mark.parametrize("name", ["class4_six_link"])
 def test_class_iii_iv_agree_with_brute_force(name):
-    """One class III and one class IV example at their first position (the brute force's 150
-    least-squares starts cost seconds; the Koshel triads are class III triads of the same form,
-    and every example's every assembly closes in the test above)."""
+    """The class IV example at its first position (the brute force's 150 least-squares starts
+    cost seconds; class III triads are compared below, the symmetric one and one with six
+    assemblies, and every example's every assembly closes in the test above)."""
     motion = _motion(name)
     _agree(motion, motion.structure.groups[0], 0, starts=150)
 
@@ -189,7 +189,7 @@ def test_symmetric_triad_has_two_centred_assemblies():
     for a in found.assemblies:
         centre = np.mean([a.points[p] for p in ("B", "C", "F")], axis=0)
         assert np.hypot(*centre) <= 1e-12
-    assert _agree(motion, g, 0, starts=200) == 2
+    assert _agree(motion, g, 0, starts=100) == 2
 
 
 def test_a_triad_with_six_assemblies():
