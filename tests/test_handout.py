@@ -280,3 +280,19 @@ def test_no_output_of_a_variants_folder_writes_over_an_input(tmp_path, capsys):
     assert mine.read_bytes() == text
     assert sorted(str(p.relative_to(tmp_path)) for p in tmp_path.rglob("*")) == [
         "variant-01", "variant-01/variant-01-velocity.pdf"]
+
+
+def test_index_page_of_random_variants_without_a_margin_argument():
+    """index_html called as the API allows (seed set, no margin given) takes the handout's own
+    margins; with none at all it leaves that sentence out instead of failing."""
+    from dataclasses import replace
+
+    from plans.handout import random_variants
+    from plans.handout.index import index_html
+
+    base = next(p for p in EXAMPLES if p.stem == "four_bar")
+    h, drawn = random_variants(base, 1, 3)
+    page = index_html(h, drawn)
+    assert f"|condition| ≥ {h.margin:g}" in page and "point on a bar kept on it" in page
+    bare = index_html(replace(h, margin=None), drawn)
+    assert "Drawn at random with seed 3" in bare and "|condition| ≥" not in bare

@@ -185,12 +185,15 @@ def _page(h: Handout, drawn: Sequence[Drawn], margin: float | None, asked: Seque
                    "of its carrier, the input speeds from a standard series; every variant meets the train's "
                    "coaxial, assembly and neighbourhood conditions.</p>")
     elif h.seed is not None:
-        out.append(f"<p>Drawn at random with seed {h.seed}: each length within ±20 % of the base's, the angle over "
-                   f"the turn, ω from a standard series; every variant assembles and every asked position keeps a "
-                   f"margin from singular positions: |condition| ≥ {margin:g} in every group whose condition is a "
-                   f"sine (class II and III; plans warns below 0.01, 0 is singular); a class IV group or a drive "
-                   f"inside the chain keeps half the base's own smallest figure (σ<sub>min</sub>/σ<sub>max</sub>). "
-                   f"Here: {_e(margin_text(h))}.</p>")
+        margin = h.margin if margin is None else margin
+        kept = "" if margin is None else (
+            f" and every asked position keeps a margin from singular positions: |condition| ≥ {margin:g} in every "
+            f"group whose condition is a sine (class II and III; plans warns below 0.01, 0 is singular); a class IV "
+            f"group or a drive inside the chain keeps half the base's own smallest figure "
+            f"(σ<sub>min</sub>/σ<sub>max</sub>). Here: {_e(margin_text(h))}")
+        out.append(f"<p>Drawn at random with seed {h.seed}: each link's proportions within ±20 % of the base's (a "
+                   f"point on a bar kept on it), the angle over the turn, ω from a standard series; every variant "
+                   f"assembles{kept}.</p>")
     out.append("<p>Printing: every sheet prints at 100 % on a page of its own size (A3 or A4, as the sheet is; "
                "print at the actual size, without fitting to the page), so that its text keeps its drawn height. "
                "The assignments come first, each sheet a page; then each variant's answer key: its values on A4, "
