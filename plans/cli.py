@@ -188,10 +188,7 @@ def _handout(source: str, out: str, quiet: bool, random: str | None, seed: str |
     ho.write_handout(h, drawn, out, progress=bar, asked=asked, assignments=assignments)
     bar.close()
     if bank is not None:
-        try:
-            write_files({Path(moodle).name: bank}, Path(moodle).parent)
-        except OutputError as exc:     # checked above: a full disk, or the folder changed meanwhile
-            raise OutputError(exc.message.replace(" -o", " --moodle"), file=moodle, key="--moodle") from None
+        write_files({Path(moodle).name: bank}, Path(moodle).parent, option="--moodle")   # checked above
     if not quiet:
         kept = "the train's conditions kept" if h.train else f"margins |condition| ≥ {ho.margin_text(h)}"
         extra = f", seed {h.seed}, {kept} ({h.redraws} draw{'s' if h.redraws != 1 else ''} rejected and redrawn)" \

@@ -42,10 +42,10 @@ def _same_file(a: Path, b: Path) -> bool:
         return False
 
 
-def check_folder(out_dir: str | Path) -> None:
+def check_folder(out_dir: str | Path, option: str = OPTION) -> None:
     """Refuse an output folder that cannot be made or written to, before anything is computed:
     an existing file, a path below a file, a folder (or its nearest existing parent) without
-    write permission."""
+    write permission. ``option``: the command-line option that named it, as the errors say."""
     out = Path(out_dir)
     probe = out
     while not probe.exists() and not probe.is_symlink():
@@ -54,11 +54,11 @@ def check_folder(out_dir: str | Path) -> None:
         probe = probe.parent
     if probe.exists() and not probe.is_dir():
         what = "is a file" if probe == out else f"lies below the file {probe}"
-        raise OutputError(f"{what}, not a folder; choose a folder for -o", file=str(out), key=OPTION)
+        raise OutputError(f"{what}, not a folder; choose a folder for {option}", file=str(out), key=option)
     if probe.exists() and not _writable(probe):
         where = "" if probe == out else f" ({probe}, where it would be made)"
-        raise OutputError(f"no permission to write in this folder{where}; choose another -o or change its "
-                          "permissions", file=str(out), key=OPTION)
+        raise OutputError(f"no permission to write in this folder{where}; choose another {option} or change its "
+                          "permissions", file=str(out), key=option)
 
 
 def _writable(folder: Path) -> bool:
@@ -66,19 +66,21 @@ def _writable(folder: Path) -> bool:
     return os.access(folder, os.W_OK | os.X_OK)
 
 
-def write_files(files: Mapping[str, str | bytes], out_dir: str | Path, *, inputs: Iterable[str | Path] = ()) -> list[Path]:
+def write_files(files: Mapping[str, str | bytes], out_dir: str | Path, *, inputs: Iterable[str | Path] = (),
+                option: str = OPTION) -> list[Path]:
     """Write ``files`` (name → text, written as UTF-8, or bytes, written as they are: a PNG,
     a PDF) into ``out_dir`` (made if needed), all or nothing. An output that would replace one
-    of ``inputs`` (the files the run read) is refused before anything is written."""
+    of ``inputs`` (the files the run read) is refused before anything is written. ``option``:
+    the command-line option that named the files' place, as the errors say."""
     out = Path(out_dir)
-    check_folder(out)
+    check_folder(out, option)
     targets = [out / name for name in files]
-    refuse_inputs(targets, inputs)
+    refuse_inputs(targets, inputs, option)
     for target in targets:
         if target.is_dir() or (target.exists() and not target.is_file()):
             raise OutputError("a folder (or another non-file) is where this output file goes; move it away or "
-                              "choose another -o", file=str(target), key=OPTION)
-    made = _make_folder(out)
+                              f"choose another {option}", file=str(target), key=option)
+    made = _make_folder(out, option)
     temps: list[Path] = []
     current = out
     try:
@@ -94,12 +96,12 @@ def write_files(files: Mapping[str, str | bytes], out_dir: str | Path, *, inputs
             _remove(tmp)
         _remove_folders(made)
         if isinstance(exc, OSError):
-            raise OutputError(_why(exc), file=str(current), key=OPTION) from None
+            raise OutputError(_why(exc, option), file=str(current), key=option) from None
         raise
     return targets
 
 
-def _make_folder(out: Path) -> list[Path]:
+def _make_folder(out: Path, option: str = OPTION) -> list[Path]:
     """Make ``out`` and its missing parents; the folders made, outermost first."""
     missing = []
     probe = out
@@ -115,7 +117,7 @@ def _make_folder(out: Path) -> list[Path]:
             made.append(folder)
     except OSError as exc:
         _remove_folders(made)
-        raise OutputError(_why(exc), file=str(out), key=OPTION) from None
+        raise OutputError(_why(exc, option), file=str(out), key=option) from None
     return made
 
 
@@ -163,15 +165,16 @@ def _write_all(fd: int, data: bytes) -> None:
         view = view[os.write(fd, view):]
 
 
-def _why(exc: OSError) -> str:
-    """What an OSError means for the user, and the fix."""
+def _why(exc: OSError, option: str = OPTION) -> str:
+    """What an OSError means for the user, and the fix (``option``: the command-line option
+    that named the place written to)."""
     if exc.errno == errno.ENOSPC or exc.errno == getattr(errno, "EDQUOT", None):
-        return "the disk is full (no space left); free some space or choose another -o; nothing was written"
+        return f"the disk is full (no space left); free some space or choose another {option}; nothing was written"
     if isinstance(exc, PermissionError) or exc.errno == errno.EROFS:
-        return ("no permission to write here (or a read-only file system); choose another -o or change its "
+        return (f"no permission to write here (or a read-only file system); choose another {option} or change its "
                 "permissions; nothing was written")
     if isinstance(exc, IsADirectoryError):
-        return "a folder is where this output file goes; move it away or choose another -o; nothing was written"
+        return f"a folder is where this output file goes; move it away or choose another {option}; nothing was written"
     if isinstance(exc, (NotADirectoryError, FileExistsError)):
-        return "a file is where a folder must be; choose a folder for -o; nothing was written"
-    return f"cannot write ({exc.strerror or exc.__class__.__name__}); choose another -o; nothing was written"
+        return f"a file is where a folder must be; choose a folder for {option}; nothing was written"
+    return f"cannot write ({exc.strerror or exc.__class__.__name__}); choose another {option}; nothing was written"
