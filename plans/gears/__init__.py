@@ -11,6 +11,7 @@ import dataclasses
 from dataclasses import dataclass
 
 from ..scene import Scene
+from ..scene.drive import check_train_speed
 from ..scene.gears import GearTrain
 from .geometry import TrainGeometry, assembly_number, planet_sets, train_geometry
 from .involute import GearPair, gear_pair, inv, inv_inverse, min_shift
@@ -47,7 +48,12 @@ def analyse_train(train: GearTrain) -> GearAnalysis:
 
 
 def with_train(scene: Scene, analysis: GearAnalysis) -> Scene:
-    """``scene`` with its crank's ω set from the train: ω of ``[gears] output`` (rad/s)."""
+    """``scene`` with its crank's ω set from the train: ω of ``[gears] output`` (rad/s), refused
+    where a written ``omega`` would be, at the train's input key (:func:`check_train_speed`)."""
     assert scene.gears is not None and scene.gears.output is not None and scene.drive is not None
     omega = analysis.speeds.omega(scene.gears.output)
+    inputs = scene.gears.inputs
+    name, rpm = inputs[0] if inputs else ("", 0.0)
+    key = f"gears.input.{name}" if len(inputs) == 1 else "gears.input"
+    check_train_speed(omega, scene.drive.rate, key, omega / rpm if len(inputs) == 1 and rpm != 0.0 else None)
     return dataclasses.replace(scene, drive=dataclasses.replace(scene.drive, speed=omega))

@@ -72,11 +72,12 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
     if scene.gears is not None:
         try:
             train = analyse_train(scene.gears)
+            if not scene.train_only:
+                scene = with_train(scene, train)
         except PlansError as exc:
             raise exc.in_file(where) if where and hasattr(exc, "in_file") else exc
         if scene.train_only:
             return _render_train(scene, train, stem=stem, style=style, found=found, where=where)
-        scene = with_train(scene, train)
     elif scene.train_only:            # a gear pair alone
         return _render_train(scene, None, stem=stem, style=style, where=where)
     try:

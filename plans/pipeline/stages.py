@@ -20,7 +20,6 @@ from ..kinematics.cycle import Cycle, solve_cycle
 from ..kinetostatics import Forces, Travel, forces_following, solve_forces
 from ..model import build_mechanism
 from ..scene import Scene
-from ..scene.drive import check_train_speed
 from ..structure import analyse_structure
 
 __all__ = ["record_stages", "solve_scene", "solve_motion", "force_analysis", "output_travel", "machine_motion",
@@ -58,8 +57,6 @@ def solve_scene(scene: Scene) -> Motion:
 def solve_motion(scene: Scene) -> tuple[Motion, Cycle | None]:
     """The scene's motion and, with ``[drive] positions``, its solved revolution (the motion
     is then the revolution's N positions)."""
-    if scene.gears is not None and scene.drive is not None:
-        _train_drive(scene)
     mech = build_mechanism(scene)
     structure = analyse_structure(mech)
     order = 2 if "acceleration" in scene.draw or scene.senses else \
@@ -76,16 +73,6 @@ def solve_motion(scene: Scene) -> tuple[Motion, Cycle | None]:
                         start=None if c.start == "extreme" else scene.drive.values[0],
                         dense_order=2 if "diagrams" in scene.draw else 0)
     return cycle.motion, cycle
-
-
-def _train_drive(scene: Scene) -> None:
-    """Refuse the crank's ω a gear train gives it (``[gears] output``, set by plans.gears.with_train)
-    where a written ``omega`` would be refused, at the train's input key."""
-    inputs = scene.gears.inputs
-    name, rpm = inputs[0] if inputs else ("", 0.0)
-    key = f"gears.input.{name}" if len(inputs) == 1 else "gears.input"
-    per_input = scene.drive.speed / rpm if len(inputs) == 1 and rpm != 0.0 else None
-    check_train_speed(scene.drive.speed, scene.drive.rate, key, per_input)
 
 
 def force_analysis(scene: Scene, motion: Motion, cycle: Cycle | None = None) -> Forces | None:
