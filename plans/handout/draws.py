@@ -26,6 +26,7 @@ from ..errors import SceneError
 from ..gears.geometry import MIN_TEETH
 from ..pipeline import render
 from ..scene import parse_scene
+from ..scene.sketch import length_points
 from ..scene.values import MIN_RATE
 from .solving import (LINE_RTOL, VariantError, base_mechanism, group_margins, short_of, solve_variant, turns_fully,
                       variant_gap)
@@ -56,11 +57,9 @@ def _speeds(base: float, file: str, key: str, unit: str) -> tuple[float, ...]:
 
 
 def _pair(key: str, points: Mapping[str, object]) -> tuple[str, str]:
-    """The two points a [lengths] key names (``AB`` or ``A-B``; the scene reader has checked it)."""
-    if "-" in key:
-        a, b = key.split("-")
-        return a, b
-    return next((key[:i], key[i:]) for i in range(1, len(key)) if key[:i] in points and key[i:] in points)
+    """The two points a [lengths] key names (``AB`` or ``A-B``; the scene reader has checked it
+    names exactly two)."""
+    return length_points(key, points)[0]
 
 
 def _decimal(x: float) -> Fraction:

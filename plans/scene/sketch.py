@@ -112,6 +112,15 @@ def read_sliders(items: Any, points: Mapping[str, Any], links: Mapping[str, Any]
     return tuple(sliders)
 
 
+def length_points(key: str, points: Mapping[str, Any]) -> list[tuple[str, str]]:
+    """Every way a ``[lengths]`` key names two of ``points``: ``A-B`` split at its hyphen, ``AB``
+    at each place where both sides are point names (the reader refuses none, or more than one)."""
+    if "-" in key:
+        parts = key.split("-")
+        return [(parts[0], parts[1])] if len(parts) == 2 and all(p in points for p in parts) else []
+    return [(key[:i], key[i:]) for i in range(1, len(key)) if key[:i] in points and key[i:] in points]
+
+
 def read_lengths(table: Mapping[str, Any], points: Mapping[str, Any],
                  links: Mapping[str, tuple[str, ...]]) -> dict[frozenset[str], float]:
     """``[lengths]``: AB or A-B = a distance (m) between two points of one link, none shorter
@@ -120,11 +129,7 @@ def read_lengths(table: Mapping[str, Any], points: Mapping[str, Any],
     written: dict[frozenset[str], str] = {}
     for key, value in table.items():
         full = f"lengths.{key}"
-        if "-" in key:
-            parts = key.split("-")
-            pairs = [tuple(parts)] if len(parts) == 2 and all(p in points for p in parts) else []
-        else:
-            pairs = [(key[:i], key[i:]) for i in range(1, len(key)) if key[:i] in points and key[i:] in points]
+        pairs = length_points(key, points)
         if not pairs:
             raise SceneError(f"{key!r} does not name two points; write e.g. AB or A-B with names from [points]",
                              key=full)
