@@ -106,7 +106,7 @@ FORCE_CLOSURE_REL = 1e-6
 #: Kinds of kinetostatic plan groups.
 FORCE, LEVER = "force", "lever"
 #: A lever force whose recorded arm is at least this long must have its arm drawn, mm (the
-#: writer's promise, plans.drawing.forces.MIN_ARM_MM, restated so the checker does not read the writer).
+#: writer's promise, plans.drawing.lever.MIN_ARM_MM, restated so the checker does not read the writer).
 MIN_ARM_MM = 0.5
 #: Plans whose vectors are measured; a group with another ``data-plan`` is a plan too unless "scheme".
 SCHEME = "scheme"

@@ -24,7 +24,8 @@ from plans.constructions.forces import (BalanceForce, BalanceMoment, ForceTerm, 
                                         zhukovsky_lever)
 from plans.constructions.plans import Plan, PlanPoint, PlanVector
 from plans.constructions.force_polygon import FORCE_SERIES
-from plans.drawing.forces import draw_force_plans, draw_lever, symbol
+from plans.drawing.forces import draw_force_plans, symbol
+from plans.drawing.lever import draw_lever
 from plans.drawing.svg import Heading
 from plans.errors import ConstructionError
 from plans.layout import measure_layout

@@ -17,7 +17,7 @@ from plans.constructions.detail import NEAR_MM
 from plans.constructions.lever_detail import lever_crowd
 from plans.constructions.plan_values import Plan, PlanPoint, PlanVector
 from plans.constructions.zhukovsky import BalanceForce, LeverLoad, zhukovsky_lever
-from plans.drawing.forces import _lever_text
+from plans.drawing.lever import _lever_text
 from plans.layout import measure_layout
 from plans.pipeline import render_scene
 

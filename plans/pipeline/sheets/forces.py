@@ -14,7 +14,8 @@ from ...constructions.forces import Lever
 from ...constructions.kinetostatics import group_force_plans, lever, lever_plan_scale, lever_scale
 from ...drawing import Heading, Style
 from ...drawing.svg import draw_empty
-from ...drawing.forces import draw_force_plans, draw_lever
+from ...drawing.forces import draw_force_plans
+from ...drawing.lever import draw_lever
 from ...errors import PlansError
 from ...kinematics import Motion
 from ...kinetostatics import MIN_LOAD, Forces
