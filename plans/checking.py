@@ -60,6 +60,11 @@ moments ± F·h with the drawn arms must sum to zero, Σ M_p = 0, within Σ F ·
 alike, but it holds only the forces applied near the pole, so Σ M_p = 0 is not asked there.
 Each of these is a :class:`Check`; a failed one is also a problem.
 
+A group drawn alone (``data-plan="group"``, μ = μl: textbook Fig. 1.27 a) is checked by
+:mod:`plans.checking_groups`: the directions of its forces, its arms (from the centre to the
+force's line, length × μl = the arm) and its moment equations recomputed from the drawn arms
+and the tagged forces.
+
 A group with ``data-plan="bound"`` holds vectors drawn at their points of application on a
 scheme (Koshel's V_S1, V_S2 drawn from S1, S2 in the plan's scale): each is measured for
 length and direction, but its ends are no plan images, so it adds no closure equation.
@@ -87,6 +92,7 @@ import shapely
 
 from .checking_geometry import GEOMETRY_TOL_MM, check_plan, similarity_ratio
 from .checking_gears import gear_problems
+from .checking_groups import GROUP, check_group_diagram
 from .checking_read import (_SVG, _TRANSFORM, _Union, _decimals, _ends, _line_data, _number, _paper_problems,
                             _point_name, _transformed)
 from .checking_report import Check, Closure, Measurement, SvgReport
@@ -227,6 +233,9 @@ def _check_group(report: SvgReport, g: ET.Element, lines: list[ET.Element]) -> N
         report.problems.append(f"plan {gid}: data-mu {g.get('data-mu')!r} is not a positive finite number")
         return
     r = 2.0 * math.sqrt(2.0) * p          # largest drawn-vector error from two rounded ends, mm
+    if plan == GROUP:
+        check_group_diagram(report, g, lines, mu, r)
+        return
     ends = []                              # (name of the end, paper xy, absolute?, name token, label token)
     for line in lines:
         q = line.get("data-quantity")

@@ -14,37 +14,59 @@ image of the rod's velocity relative to the cylinder — and is applied there.
 from __future__ import annotations
 
 import math
+from typing import Mapping
 
 import numpy as np
 
 from ..kinematics import Motion
 from ..kinetostatics import Forces
+from .force_polygon import FORCE_PLAN_MAX_MM
 from .forces import (BalanceForce, BalanceMoment, ForcePlan, ForceTerm, Lever, LeverCouple, LeverLoad, force_plan,
                      zhukovsky_lever)
 from .plans import Plan
 from .scales import fitting_scale
 from .. import linalg as la
 
-__all__ = ["group_force_plans", "lever", "lever_value", "lever_scale", "lever_plan_scale", "LEVER_PLAN_MM"]
+__all__ = ["group_force_plans", "BESIDE_DIAGRAM_MM", "lever", "lever_value", "lever_scale", "lever_plan_scale", "LEVER_PLAN_MM"]
 
 
 def _pt(v) -> tuple[float, float]:
     return (float(v[0]) + 0.0, float(v[1]) + 0.0)
 
 
-def group_force_plans(forces: Forces, i: int) -> tuple[ForcePlan, ...]:
+def group_force_plans(forces: Forces, i: int, *, limit: float = FORCE_PLAN_MAX_MM,
+                      first_normal: Mapping[str, str] | None = None) -> tuple[ForcePlan, ...]:
     """Every group's force polygon at position ``i``, farthest group first (the order solved);
-    a group with no force at all (no load on it or beyond it) has no polygon."""
+    a group with no force at all (no load on it or beyond it) has no polygon. ``limit``: the
+    largest extent of a polygon, mm (:data:`BESIDE_DIAGRAM_MM` where it shares its panel with
+    the group drawn alone). A reaction's components are of kind ``reaction_n``/``reaction_t``
+    (the normal ones get their direction lines). ``first_normal``: group → the normal component
+    found first (a triad's, from the moments about Assur's special point), laid before the two
+    that close the polygon."""
     out = []
     for g in forces.groups:
-        terms = [ForceTerm(t.quantity, _pt(t.vector[i]), t.kind) for t in g.terms]
+        terms = [ForceTerm(t.quantity, _pt(t.vector[i]), _component_kind(t.quantity, t.kind)) for t in g.terms]
         if not any(t.vector != (0.0, 0.0) for t in terms):
             continue
+        first = (first_normal or {}).get(g.group)
+        if first is not None:
+            lead = [t for t in terms if t.quantity == first]
+            rest = [t for t in terms if t.quantity != first]
+            at = next((k for k, t in enumerate(rest) if t.quantity.endswith(":n")), len(rest))
+            terms = rest[:at] + lead + rest[at:]
         inner = [ForceTerm(t.quantity, _pt(t.vector[i]), t.kind) for t in (g.inner or ())]
         # an inner reaction is drawn as the diagonal it equals, where the forces on its link are
         # consecutive sides (a class II group's); a class III/IV polygon lists them by kind
-        out.append(force_plan(g.group, terms, internal=inner, unmatched="skip"))
+        two = sum(1 for t in terms if t.vector != (0.0, 0.0)) <= 2      # R21 + R01 = 0: a line, drawn small
+        out.append(force_plan(g.group, terms, internal=inner, unmatched="skip",
+                              limit=min(limit, TWO_FORCE_MM) if two else limit))
     return tuple(out)
+
+
+def _component_kind(quantity: str, kind: str) -> str:
+    if kind == "reaction" and quantity.startswith("R:") and quantity.endswith((":n", ":t")):
+        return "reaction_" + quantity[-1]
+    return kind
 
 
 def _ends(motion: Motion, link: str, i: int) -> tuple[np.ndarray, np.ndarray]:
@@ -64,6 +86,13 @@ def _end_names(motion: Motion, link: str) -> tuple[str, str]:
     first = pts[0].lower()
     return first, (pts[1].lower() if len(pts) > 1 else first + "′")
 
+
+#: Largest extent of a force polygon drawn beside its group's diagram, mm: the diagram, its
+#: written equations, the polygon and the table share an A3 panel, and the driving link's
+#: panel goes beside the last group's.
+BESIDE_DIAGRAM_MM = 130.0
+#: Largest extent of a polygon of two forces (equal and opposite), mm.
+TWO_FORCE_MM = 70.0
 
 #: A load (or moment, over the mechanism's size) below this fraction of the largest is zero.
 ZERO_REL = 1e-12

@@ -42,8 +42,10 @@ import numpy as np
 
 from ..constructions.forces import SHORT_SIDE_MM, ForceDetail, ForcePlan, force_details
 from .canvas import Canvas, fmt
+from ..constructions.group_diagram import GroupDiagram
 from .force_marks import (PANEL_GAP_MM, TABLE_LEAD_MM, TABLE_TEXT_MM, _colour, _dashed_vector, _number, _place,
                           _side_label_direction, _solid_vector, symbol)
+from .group_diagram import diagram_box, diagram_rows, draw_group_diagram
 from .marks import bounds, markup as _markup
 from .sheet import FORMATS, TitleBlock, choose_format, new_sheet
 from .style import Style
@@ -58,12 +60,18 @@ TABLE_COLUMNS_MM = (22.0, 20.0, 18.0, 52.0)
 #: Vertices nearer than this share one label naming them all, mm: a letter is about 2.5 mm
 #: tall, and two vertices nearer than SHORT_SIDE_MM read as one spot (the layout measurer's rule).
 VERTEX_SPOT_MM = 3.0
+#: Width the written moment equations under a group's diagram wrap to (at least), mm.
+WRITTEN_MM = 70.0
 
 
 # --- force plans ------------------------------------------------------------------------------
 
 @dataclass(frozen=True)
 class _Panel:
+    """One group's panel: its caption over columns of blocks (:data:`ARRANGEMENTS`) — ``D`` the
+    group drawn alone (its views side by side, or stacked), ``W`` their written equations,
+    ``P`` the polygon with its details beside it, ``T`` the table."""
+
     plan: ForcePlan
     content: tuple[float, float, float, float]     # the polygon's box, mm y up (labels' room included)
     caption: tuple[str, ...]
@@ -74,7 +82,13 @@ class _Panel:
     detail_boxes: tuple[tuple[float, float, float, float], ...] = ()    # each detail's box, mm y up
     poly_width: float = 0.0                        # width of the polygon with its details beside it, mm
     poly_height: float = 0.0
-    table_beside: bool = False                     # the table right of the polygon, not below it
+    detail_at: tuple[tuple[float, float], ...] = ()    # each detail's top left in the polygon's block, mm
+    diagrams: tuple[GroupDiagram, ...] = ()        # the group drawn alone (a triad: twice)
+    diagram_contents: tuple[tuple[float, float, float, float], ...] = ()
+    written: tuple[str, ...] = ()                  # under the diagrams: their methods, equations and notes
+    stacked: bool = False                          # the diagrams one over the other, not side by side
+    columns: tuple[tuple[str, ...], ...] = (("P", "T"),)
+    sizes: tuple[tuple[str, float, float], ...] = ()   # each block's width and height, mm
 
 
 def _detail_caption(k: int, d: ForceDetail) -> str:
@@ -103,7 +117,9 @@ def _table_rows(plan: ForcePlan, details: Sequence[ForceDetail] = ()) -> list[tu
     return rows
 
 
-def _panel(plan: ForcePlan, style: Style) -> _Panel:
+def _panel(plan: ForcePlan, style: Style, diagrams: Sequence[GroupDiagram] = ()) -> list[_Panel]:
+    """The panel of one group; two (the group drawn alone, then its polygon) when they do not fit
+    one A3 sheet together."""
     coords = [p.xy for p in plan.points] + [l.start for l in plan.lines] + [l.end for l in plan.lines]
     content = bounds(coords)
     details = force_details(plan)
@@ -112,29 +128,92 @@ def _panel(plan: ForcePlan, style: Style) -> _Panel:
     head = f"Force plan of group {plan.group},  μ_F = {plan.mu:g} N/mm"
     w_poly = content[2] - content[0]
     h_poly = content[3] - content[1]
+    detail_at = []
     if details:
-        col = max(max(b[2] - b[0] for b in boxes),
-                  max(width(runs(_detail_caption(k, d)), TABLE_TEXT_MM, False) for k, d in enumerate(details)))
-        w_poly += PANEL_GAP_MM + col
-        h_poly = max(h_poly, sum(TABLE_LEAD_MM + b[3] - b[1] for b in boxes))
-    table_w = sum(TABLE_COLUMNS_MM)
-    room = max(w_poly, table_w, 90.0)
-    caption = tuple(wrap(head, room, TABLE_TEXT_MM) + wrap(equation, room, TABLE_TEXT_MM, indent="   "))
+        # the details in columns beside the polygon, a new column where one would outgrow an A3 sheet
+        tallest = FORMATS[2].area.y1 - FORMATS[2].area.y0 - 4 * TABLE_LEAD_MM
+        x, y, col = w_poly + PANEL_GAP_MM, 0.0, 0.0
+        for k, (d, b) in enumerate(zip(details, boxes)):
+            bw = max(b[2] - b[0], width(runs(_detail_caption(k, d)), TABLE_TEXT_MM, False))
+            bh = TABLE_LEAD_MM + b[3] - b[1]
+            if y > 0 and y + bh > max(tallest, h_poly):
+                x, y, col = x + col + PANEL_GAP_MM, 0.0, 0.0
+            detail_at.append((x, y))
+            y += bh
+            col = max(col, bw)
+            h_poly = max(h_poly, y)
+        w_poly = x + col
+    boxes_d = tuple(diagram_box(d) for d in diagrams)
     rows = _table_rows(plan, details)
-    w = max(room, max(width(runs(c), TABLE_TEXT_MM, False) for c in caption))
-    h_table = TABLE_LEAD_MM * (len(rows) + 1.8)
-    h = TABLE_LEAD_MM * (len(caption) + 0.5) + h_poly + h_table
+    table = (sum(TABLE_COLUMNS_MM) if any(r[3] for r in rows) else sum(TABLE_COLUMNS_MM[:3]),
+             TABLE_LEAD_MM * (len(rows) + 1.8))
+    poly = (w_poly, h_poly)
     a3 = FORMATS[2].area
-    if h > a3.y1 - a3.y0:
-        # too tall for an A3 sheet's height with the table below: the table beside the polygon
-        w = max(w_poly + PANEL_GAP_MM + table_w, max(width(runs(c), TABLE_TEXT_MM, False) for c in caption))
-        h = TABLE_LEAD_MM * (len(caption) + 0.5) + max(h_poly, h_table)
-        return _Panel(plan, content, caption, tuple(rows), w, h, details, boxes, w_poly, h_poly, True)
-    return _Panel(plan, content, caption, tuple(rows), w, h, details, boxes, w_poly, h_poly)
+    room_w, room_h = a3.x1 - a3.x0, a3.y1 - a3.y0
+    best = None
+    for stacked in ((False, True) if len(diagrams) > 1 else (False,)):
+        for columns in (ARRANGEMENTS if diagrams else PLAIN):
+            size, written = _blocks(diagrams, boxes_d, stacked, poly, table)
+            cols = [[(name, *size[name]) for name in col] for col in columns]
+            body_w = sum(max(w for _, w, _ in col) for col in cols) + PANEL_GAP_MM * (len(cols) - 1)
+            body_w = max(body_w, 0.0 if diagrams else 90.0)
+            caption = tuple(wrap(head, body_w, TABLE_TEXT_MM) + wrap(equation, body_w, TABLE_TEXT_MM, indent="   "))
+            w = max([body_w] + [width(runs(c), TABLE_TEXT_MM, False) for c in caption])
+            h = TABLE_LEAD_MM * (len(caption) + 0.5) + max(sum(h for _, _, h in col) + TABLE_LEAD_MM * 0.9 *
+                                                             (len(col) - 1) for col in cols)
+            over = max(w - room_w, 0.0) + max(h - room_h, 0.0)
+            key = (over, w, h)
+            if best is None or key < best[0]:
+                best = (key, w, h, caption, written, stacked, columns, size)
+    (over, _, _), w, h, caption, written, stacked, columns, size = best
+    if over > 0 and diagrams:
+        # too large for one A3 sheet together: the group drawn alone and its polygon, each a panel
+        alone = f"Group {plan.group} drawn alone, μ_l = {diagrams[0].mu:g} m/mm (its force plan follows)"
+        size, written = _blocks(diagrams, boxes_d, False, poly, table)
+        cap = tuple(wrap(alone, size["W"][0], TABLE_TEXT_MM))
+        first = _Panel(plan, content, cap, (), max(size["D"][0], size["W"][0]),
+                       TABLE_LEAD_MM * (len(cap) + 0.5) + size["D"][1] + TABLE_LEAD_MM * 0.9 + size["W"][1],
+                       diagrams=tuple(diagrams), diagram_contents=boxes_d, written=written, columns=(("D", "W"),),
+                       sizes=tuple((k, float(v[0]), float(v[1])) for k, v in size.items()))
+        return [first] + _panel(plan, style)
+    return [_Panel(plan, content, caption, tuple(rows), w, h, details, boxes, w_poly, h_poly, tuple(detail_at),
+                  tuple(diagrams), boxes_d,
+                  written, stacked, tuple(tuple(c) for c in columns),
+                  tuple((k, float(v[0]), float(v[1])) for k, v in size.items()))]
 
 
-def _pack(panels: Sequence[_Panel], room_w: float, room_h: float) -> list[list[tuple[_Panel, float, float]]]:
-    """Panels in rows, left to right, sheet after sheet: (panel, x, y) from each sheet's top left."""
+#: How a panel's blocks may be set in columns, tried in turn (the narrowest that fits an A3
+#: sheet wins): the diagrams over their equations, the polygon, the table.
+ARRANGEMENTS = ((("D", "W", "T"), ("P",)), (("D", "W"), ("P", "T")), (("D", "W"), ("P",), ("T",)))
+PLAIN = ((("P", "T"),), (("P",), ("T",)))
+
+
+def _blocks(diagrams, boxes, stacked: bool, poly, table) -> tuple[dict[str, tuple[float, float]], tuple[str, ...]]:
+    """Each block's size, mm, and the written rows wrapped to the diagrams' width."""
+    ws = [b[2] - b[0] for b in boxes]
+    hs = [b[3] - b[1] for b in boxes]
+    if stacked:
+        dw, dh = max(ws, default=0.0), sum(hs) + PANEL_GAP_MM * max(len(hs) - 1, 0)
+    else:
+        dw, dh = sum(ws) + PANEL_GAP_MM * max(len(ws) - 1, 0), max(hs, default=0.0)
+    size = {"P": poly, "T": table}
+    written: tuple[str, ...] = ()
+    if diagrams:
+        room = max(dw, WRITTEN_MM)
+        written = tuple(r for d in diagrams for row in diagram_rows(d)
+                        for r in wrap(row, room, TABLE_TEXT_MM, indent="      "))
+        size["D"] = (dw, dh)
+        size["W"] = (max([room] + [width(runs(r), TABLE_TEXT_MM, False) for r in written]),
+                     TABLE_LEAD_MM * (len(written) + 0.2))
+    return size, written
+
+
+def _pack(panels: Sequence[_Panel], room_w: float, room_h: float, *, keep: bool = True
+          ) -> list[list[tuple[_Panel, float, float]]]:
+    """Panels in rows, left to right, sheet after sheet: (panel, x, y) from each sheet's top left.
+    The driving link's panel (the last, ``I(…)``) stays on a sheet of the group before it: when
+    it would open a sheet of its own, that group's last panel moves on with it, or (when the two
+    cannot share a sheet) it joins the nearest sheet of that group with room for it."""
     sheets, sheet, x, y, row_h = [], [], 0.0, 0.0, 0.0
     for p in panels:
         if sheet and x + p.width > room_w:
@@ -147,17 +226,38 @@ def _pack(panels: Sequence[_Panel], room_w: float, room_h: float) -> list[list[t
         row_h = max(row_h, p.height)
     if sheet:
         sheets.append(sheet)
+    if keep and len(sheets) > 1 and len(sheets[-1]) == 1 and panels[-1].plan.group.startswith("I("):
+        crank = panels[-1]
+        last = sheets[-2][-1][0]
+        together = _pack([last, crank], room_w, room_h, keep=False)
+        if len(together) == 1:                         # the last group's panel moves on to the crank's sheet
+            sheets[-2].pop()
+            sheets[-1:] = together
+        else:                                          # else the crank joins the nearest sheet of its group
+            group = last.plan.group
+            for k in range(len(sheets) - 2, -1, -1):
+                if all(q.plan.group != group for q, _, _ in sheets[k]):
+                    break
+                joined = _pack([q for q, _, _ in sheets[k]] + [crank], room_w, room_h, keep=False)
+                if len(joined) == 1:
+                    sheets[k] = joined[0]
+                    sheets.pop()
+                    break
+        sheets = [s for s in sheets if s]
     return sheets
 
 
-
 def draw_force_plans(plans: Sequence[ForcePlan], heading: Heading, *, ident: str,
-                     style: Style = Style()) -> tuple[str, ...]:
+                     style: Style = Style(), diagrams: Sequence[GroupDiagram] = ()) -> tuple[str, ...]:
     """SVG texts of the force plans of one position (see the module docstring): usually one
-    sheet; more when the panels do not fit one A3 sheet."""
+    sheet; more when the panels do not fit one A3 sheet. ``diagrams``: the groups drawn alone
+    (:mod:`.group_diagram`), each beside the polygon of its group."""
     if not plans:
         return ()
-    panels = [_panel(p, style) for p in plans]
+    alone: dict[str, list[GroupDiagram]] = {}
+    for d in diagrams:
+        alone.setdefault(d.group, []).append(d)
+    panels = [q for p in plans for q in _panel(p, style, alone.get(p.group, ()))]
     a3 = FORMATS[2].area
     groups = _pack(panels, a3.x1 - a3.x0, a3.y1 - a3.y0)
     out = []
@@ -171,7 +271,14 @@ def _force_sheet(placed, heading: Heading, ident: str, style: Style) -> str:
     W = max(x + p.width for p, x, _ in placed)
     H = max(y + p.height for p, _, y in placed)
     fmt_ = choose_format(W, H) or FORMATS[2]
-    scales = ";  ".join(f"{p.plan.group}: μ_F = {p.plan.mu:g} N/mm" for p, _, _ in placed)
+    said: dict[str, list[str]] = {}
+    for p, _, _ in placed:
+        said.setdefault(p.plan.group, [])
+        for what in ([f"μ_F = {p.plan.mu:g} N/mm"] if p.rows else []) + \
+                ([f"μ_l = {p.diagrams[0].mu:g} m/mm"] if p.diagrams else []):
+            if what not in said[p.plan.group]:
+                said[p.plan.group].append(what)
+    scales = ";  ".join(f"{g}: {', '.join(v)}" for g, v in said.items())
     dwg, canvas = new_sheet(fmt_, (0.0, 0.0, W, H), ident=ident, style=style,
                             block=TitleBlock(heading.mechanism, heading.sheet, heading.position, scales))
     ox, oy = canvas.dx, canvas.dy - H          # paper position of the packed content's top left
@@ -183,44 +290,70 @@ def _force_sheet(placed, heading: Heading, ident: str, style: Style) -> str:
         for r, line in enumerate(p.caption):
             canvas.text(texts, (left, top + TABLE_LEAD_MM * (r + 0.75)), line, size=TABLE_TEXT_MM,
                         ident=f"{pid}-cap{r}")
-        poly_top = top + TABLE_LEAD_MM * (len(p.caption) + 0.5)
-        ch, cw = p.content[3] - p.content[1], p.content[2] - p.content[0]
+        body = top + TABLE_LEAD_MM * (len(p.caption) + 0.5)
+        size = {k: (w, h) for k, w, h in p.sizes}
+        x0 = left
+        for col in p.columns:
+            y0 = body
+            for block in col:
+                _block(dwg, canvas, texts, rules, p, block, (x0, y0), pid, style)
+                y0 += size[block][1] + TABLE_LEAD_MM * 0.9
+            x0 += max(size[b][0] for b in col) + PANEL_GAP_MM
+    dwg.add(rules)
+    dwg.add(texts)
+    canvas.place_labels(dwg.add(dwg.g(id=f"{ident}-leaders")))
+    return dwg.tostring()
+
+
+def _block(dwg, canvas: Canvas, texts, rules, p: _Panel, block: str, at: tuple[float, float], pid: str,
+           style: Style) -> None:
+    """Draw one block of panel ``p`` with its top left at paper ``at``."""
+    left, top = at
+    if block == "D":
+        x, y = left, top
+        for j, (d, b) in enumerate(zip(p.diagrams, p.diagram_contents)):
+            w, h = b[2] - b[0], b[3] - b[1]
+            _place(canvas, b, (x, y, x + w, y + h))
+            draw_group_diagram(dwg, canvas, d, f"{pid}-d{j}", style)
+            if p.stacked:
+                y += h + PANEL_GAP_MM
+            else:
+                x += w + PANEL_GAP_MM
+    elif block == "W":
+        for r, line in enumerate(p.written):
+            canvas.text(texts, (left, top + TABLE_LEAD_MM * (r + 0.75)), line, size=TABLE_TEXT_MM, ident=f"{pid}-w{r}")
+    elif block == "P":
+        cw = p.content[2] - p.content[0]
         if p.details:
             # the polygon on the left, its details stacked in a column beside it
-            _place(canvas, p.content, (left, poly_top, left + cw, poly_top + p.poly_height))
+            _place(canvas, p.content, (left, top, left + cw, top + p.poly_height))
             _force_layers(dwg, canvas, p.plan, pid, style, details=p.details)
-            dx = left + cw + PANEL_GAP_MM
-            dy = poly_top
-            for j, (d, b) in enumerate(zip(p.details, p.detail_boxes)):
+            for j, (d, b, (ox, oy)) in enumerate(zip(p.details, p.detail_boxes, p.detail_at)):
+                dx, dy = left + ox, top + oy
                 canvas.text(texts, (dx, dy + TABLE_LEAD_MM * 0.75), _detail_caption(j, d), size=TABLE_TEXT_MM,
                             ident=f"{pid}-dcap{j}")
                 dy += TABLE_LEAD_MM
                 _place(canvas, b, (dx, dy, dx + b[2] - b[0], dy + b[3] - b[1]))
                 _detail_layers(dwg, canvas, p.plan, d, f"{pid}-x{j}", style)
-                dy += b[3] - b[1]
         else:
-            _place(canvas, p.content, (left, poly_top, left + (cw if p.table_beside else max(cw, p.width)),
-                                       poly_top + ch))
+            room = cw if p.diagrams or len(p.columns) > 1 else max(cw, p.width)
+            _place(canvas, p.content, (left, top, left + room, top + p.poly_height))
             _force_layers(dwg, canvas, p.plan, pid, style)
-        ty = poly_top + p.poly_height + TABLE_LEAD_MM * 0.9
-        if p.table_beside:
-            left, ty = left + p.poly_width + PANEL_GAP_MM, poly_top + TABLE_LEAD_MM * 0.9
+    else:
+        ty = top + TABLE_LEAD_MM * 0.75
+        w = next(w for k, w, _ in p.sizes if k == "T") if p.sizes else sum(TABLE_COLUMNS_MM)
         cols = np.cumsum((0.0,) + TABLE_COLUMNS_MM)
+        cols[-1] = w
         for c, head in enumerate(("force", "F, N", "drawn, mm", "")):
-            if not head:
-                continue
-            canvas.text(texts, (left + cols[c], ty), head, size=TABLE_TEXT_MM, ident=f"{pid}-th{c}")
+            if head:
+                canvas.text(texts, (left + cols[c], ty), head, size=TABLE_TEXT_MM, ident=f"{pid}-th{c}")
         rule_y = ty + TABLE_LEAD_MM * 0.45
         canvas.line(rules, (left - canvas.dx, canvas.dy - rule_y), (left + cols[-1] - canvas.dx, canvas.dy - rule_y),
                     id=f"{pid}-rule")
         for r, row in enumerate(p.rows):
-            yy = ty + TABLE_LEAD_MM * (r + 1.1)
             for c, cell in enumerate(row):
-                canvas.text(texts, (left + cols[c], yy), cell, size=TABLE_TEXT_MM, ident=f"{pid}-t{r}-{c}")
-    dwg.add(rules)
-    dwg.add(texts)
-    canvas.place_labels(dwg.add(dwg.g(id=f"{ident}-leaders")))
-    return dwg.tostring()
+                canvas.text(texts, (left + cols[c], ty + TABLE_LEAD_MM * (r + 1.1)), cell, size=TABLE_TEXT_MM,
+                            ident=f"{pid}-t{r}-{c}")
 
 
 def _vertex_labels(points, hidden: set[str] = frozenset()) -> list[tuple[tuple[float, float], str]]:

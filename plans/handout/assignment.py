@@ -247,7 +247,7 @@ def _assignment(h: Handout, d: Drawn, asked: tuple[Asked, ...]) -> tuple[str, ..
 #: name and the scale the student writes in.
 _AREAS = {"velocity": ("velocity", "Velocity plan (pole p)", "μ_V = ________ (m/s)/mm"),
           "acceleration": ("acceleration", "Acceleration plan (pole π)", "μ_a = ________ (m/s²)/mm"),
-          "forces": ("force", "Force plans", "μ_F = ________ N/mm"),
+          "forces": ("force", "Groups drawn alone (μ_l, arms h, ΣM = 0) and force plans", "μ_F = ________ N/mm"),
           "lever": ("lever", "Zhukovsky's lever", "μ_F = ________ N/mm")}
 #: The dynamics diagrams drawn one above the other on a common φ axis (``data-diagram``).
 _DIAGRAMS = ("M", "A", "T", "I")
@@ -291,7 +291,9 @@ def answer_areas(h: Handout, d: Drawn) -> list:
             f", φ_{{{drive.link}}} = {v % 360.0 + 0.0:g}°" if drive.kind.angular else f", s = {v:g} m"
         for kind in kinds:
             what, name, scale = _AREAS[kind]
-            out.append(Area(kind, name + at, scale, tuple(_sizes(held(kind + suffix, (what,), kind == "forces"))),
+            # the force sheets' groups drawn alone (with their arms and moment equations) get room too
+            kinds_drawn = (what, "group") if kind == "forces" else (what,)
+            out.append(Area(kind, name + at, scale, tuple(_sizes(held(kind + suffix, kinds_drawn, kind == "forces"))),
                             suffix))
     return out
 

@@ -39,6 +39,8 @@ from here. Must not import constructions or anything above the kinetostatics.
 
 from __future__ import annotations
 
+import numpy as np
+
 from ..kinematics import Motion
 from ..scene import FRAME, Scene
 from ..structure import ComplexGroup, DrivenGroup, Group, Pair
@@ -51,6 +53,26 @@ from .solver import POINT_RTOL, SINGULAR_COND, _Solver
 
 __all__ = ["ForceTerm", "GroupForces", "Reaction", "Balancing", "Forces", "solve_forces", "SINGULAR_COND",
            "POINT_RTOL"]
+
+
+def _rod_components(s: _Solver, g: ComplexGroup, whole: list[ForceTerm]
+                    ) -> tuple[list[ForceTerm], list[ForceTerm]] | None:
+    """A class III group of three revolute rods (Assur's triad): each outer reaction split into
+    R^τ (across its rod) and R^n (along it, outer pin → inner pin), for the polygon in the
+    textbook's order — the R^τ first, then the loads, then the R^n, which close it. None for
+    any other group (its reactions stay whole)."""
+    rods = g.rods if isinstance(g, ComplexGroup) else ()
+    if g.klass != 3 or len(rods) != 3 or any(r.form != "RR" for r in rods):
+        return None
+    taus, norms = [], []
+    by_link = {t.quantity.rpartition("-")[2]: t for t in whole}
+    for rod in rods:
+        t = by_link[rod.link]
+        nu, _ = _unit(s.geo.pin(rod.inner.point) - s.geo.pin(rod.outer.point))
+        n = np.sum(t.vector * nu, axis=1)[:, None] * nu
+        taus.append(ForceTerm(t.quantity + ":t", t.vector - n, "reaction"))
+        norms.append(ForceTerm(t.quantity + ":n", n, "reaction"))
+    return taus, norms
 
 
 def solve_forces(motion: Motion, scene: Scene, *, closed_forms: bool = True, travel: Travel | None = None) -> Forces:
@@ -74,8 +96,10 @@ def solve_forces(motion: Motion, scene: Scene, *, closed_forms: bool = True, tra
             outer = [_Pair(p.b, p.a, p.kind, p.point, p.prismatic) for p in g.outer]
             known = [t for link in g.links for t in s.terms_of(link)]
             s.system(g.name, g.links, inner + outer)
-            terms = known + [ForceTerm(f"R:{p.first}-{p.second}", s.reactions[s._last_key(p.first, p.second)].force,
-                                       "reaction") for p in outer]
+            whole = [ForceTerm(f"R:{p.first}-{p.second}", s.reactions[s._last_key(p.first, p.second)].force,
+                               "reaction") for p in outer]
+            split = _rod_components(s, g, whole)
+            terms = known + whole if split is None else split[0] + known + split[1]
             inner_terms = tuple(ForceTerm(f"R:{p.first}-{p.second}",
                                           s.reactions[s._last_key(p.first, p.second)].force, "reaction") for p in inner)
             s.groups.append(GroupForces(g.name, g.links, tuple(terms), inner_terms))

@@ -11,7 +11,8 @@ from typing import Iterable
 
 from ...constructions import Scales, velocity_plan
 from ...constructions.forces import Lever
-from ...constructions.kinetostatics import group_force_plans, lever, lever_plan_scale, lever_scale
+from ...constructions.group_diagram import group_diagrams
+from ...constructions.kinetostatics import BESIDE_DIAGRAM_MM, group_force_plans, lever, lever_plan_scale, lever_scale
 from ...drawing import Heading, Style
 from ...drawing.svg import draw_empty
 from ...drawing.forces import draw_force_plans
@@ -52,8 +53,12 @@ def force_sheets(scene: Scene, motion: Motion, forces: Forces, scales: Scales, o
         page = Page.at(scene, motion, i, stem, style)
         if "forces" in scene.draw:
             heading = Heading(scene.title, "Force plans", page.label)
-            plans = () if unloaded(forces, i) else group_force_plans(forces, i)
-            sheets = draw_force_plans(plans, heading, ident=page.ident("forces"), style=style) if plans else \
+            alone = () if unloaded(forces, i) else group_diagrams(motion, forces, i)
+            plans = () if unloaded(forces, i) else group_force_plans(
+                forces, i, limit=BESIDE_DIAGRAM_MM, first_normal={d.group: f"R:{e.unknown[3:]}:n" for d in alone
+                                                                  for e in d.equations if e.unknown.startswith("Rn:")})
+            sheets = draw_force_plans(plans, heading, ident=page.ident("forces"), style=style, diagrams=alone) \
+                if plans else \
                 (draw_empty("force", heading, ident=page.ident("forces"), style=style, notes=(NO_LOAD,)),)
             for k, svg in enumerate(sheets):
                 files[f"{stem}-forces{page.suffix}{'' if k == 0 else f'-{k + 1}'}.svg"] = svg
