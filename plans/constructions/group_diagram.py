@@ -446,9 +446,20 @@ def group_diagrams(motion: Motion, forces: Forces, i: int) -> tuple[GroupDiagram
     return tuple(out)
 
 
+def _printed(quantity: str) -> str:
+    """A tag in the sheets' label markup (R_{12,τ}, M_{bal}, F_{bal})."""
+    kind, _, rest = quantity.partition(":")
+    if kind in ("Rt", "Rn"):
+        i, _, j = rest.partition("-")
+        ij = f"{i}{j}" if len(i) == 1 == len(j) else f"{i},{j}"
+        return f"R_{{{ij},{'τ' if kind == 'Rt' else 'n'}}}"
+    return f"{kind}_{{{rest}}}"
+
+
 def _finish(b: _Builder, group: str, eqs: list[tuple], method: str, notes: list[str], special: list[tuple]
             ) -> GroupDiagram:
     """Scale the world pieces to the diagram's μl, drop zero forces, number the arms."""
+    notes = list(notes)
     mech = b.mech
     pts: dict[str, np.ndarray] = {}
     bars = []
@@ -470,12 +481,14 @@ def _finish(b: _Builder, group: str, eqs: list[tuple], method: str, notes: list[
     forces = tuple(DiagramForce(f.quantity, f.link, mm(w), f.point, f.vector, f.kind, f.known)
                    for f, w in b.forces_w if f.value > zero)
     couples = tuple(DiagramCouple(c.quantity, c.link, mm(w), c.value, c.known) for c, w in b.couples_w
-                    if abs(c.value) > MIN_LOAD)
+                    if abs(c.value) > max(zero * mech.size, MIN_LOAD))
     drawn = {f.quantity for f in forces} | {c.quantity for c in couples}
     equations, arms = [], []
     for unknown, links, about, centre, skip in eqs:
-        if unknown not in drawn:
-            continue                           # a zero unknown: nothing to find, nothing drawn
+        if unknown not in drawn:               # a zero unknown: nothing drawn, the sheet says why
+            notes.append(f"{_printed(unknown)} = 0: the moments about {about} of the other forces cancel (each "
+                         f"line through {about}, or their sum zero to rounding)")
+            continue
         e = _equation(b, unknown, links, about, centre, skip)
         e = MomentEquation(e.unknown, e.links, e.about, mm(e.centre), tuple(t for t in e.terms if t.quantity in drawn),
                            e.arm, e.sign, e.value)

@@ -113,13 +113,28 @@ def _table_rows(plan: ForcePlan, details: Sequence[ForceDetail] = ()) -> list[tu
                         f"negligible: {_number(w.length, 2)} mm in detail {k + 1}")
             else:
                 note = f"negligible: < {SHORT_SIDE_MM:g} mm at μ_F"
-        rows.append((symbol(t.quantity), _number(t.value), _number(v.length, 4) if v else "0 (not drawn)", note))
+        if v is None and t.value > 0:          # a whole reaction whose components are not adjacent sides
+            note = "its components are drawn"
+        rows.append((symbol(t.quantity), _number(t.value), _number(v.length, 4) if v else
+                     ("not drawn" if t.value > 0 else "0 (not drawn)"), note))
     return rows
 
 
 def _panel(plan: ForcePlan, style: Style, diagrams: Sequence[GroupDiagram] = ()) -> list[_Panel]:
-    """The panel of one group; two (the group drawn alone, then its polygon) when they do not fit
-    one A3 sheet together."""
+    """The panel of one group (its narrowest arrangement that fits an A3 sheet); two (the group
+    drawn alone, then its polygon) when no arrangement fits."""
+    options = _panel_options(plan, style, diagrams)
+    if options:
+        return [options[0]]
+    if diagrams:
+        return _split_panel(plan, style, diagrams)
+    return [_panel_options(plan, style, fit=False)[0]]      # too large anyway: the least overflow
+
+
+def _panel_options(plan: ForcePlan, style: Style, diagrams: Sequence[GroupDiagram] = (), *, fit: bool = True
+                   ) -> list[_Panel]:
+    """Every arrangement of the group's panel that fits an A3 sheet, the narrowest first (with
+    ``fit=False`` every arrangement, the least overflowing first)."""
     coords = [p.xy for p in plan.points] + [l.start for l in plan.lines] + [l.end for l in plan.lines]
     content = bounds(coords)
     details = force_details(plan)
@@ -150,7 +165,7 @@ def _panel(plan: ForcePlan, style: Style, diagrams: Sequence[GroupDiagram] = ())
     poly = (w_poly, h_poly)
     a3 = FORMATS[2].area
     room_w, room_h = a3.x1 - a3.x0, a3.y1 - a3.y0
-    best = None
+    found = []
     for stacked in ((False, True) if len(diagrams) > 1 else (False,)):
         for columns in (ARRANGEMENTS if diagrams else PLAIN):
             size, written = _blocks(diagrams, boxes_d, stacked, poly, table)
@@ -162,29 +177,33 @@ def _panel(plan: ForcePlan, style: Style, diagrams: Sequence[GroupDiagram] = ())
             h = TABLE_LEAD_MM * (len(caption) + 0.5) + max(sum(h for _, _, h in col) + TABLE_LEAD_MM * 0.9 *
                                                              (len(col) - 1) for col in cols)
             over = max(w - room_w, 0.0) + max(h - room_h, 0.0)
-            key = (over, w, h)
-            if best is None or key < best[0]:
-                best = (key, w, h, caption, written, stacked, columns, size)
-    (over, _, _), w, h, caption, written, stacked, columns, size = best
-    if over > 0 and diagrams:
-        # too large for one A3 sheet together: the group drawn alone and its polygon, each a panel
-        alone = f"Group {plan.group} drawn alone, μ_l = {diagrams[0].mu:g} m/mm (its force plan follows)"
-        size, written = _blocks(diagrams, boxes_d, False, poly, table)
-        cap = tuple(wrap(alone, size["W"][0], TABLE_TEXT_MM))
-        first = _Panel(plan, content, cap, (), max(size["D"][0], size["W"][0]),
-                       TABLE_LEAD_MM * (len(cap) + 0.5) + size["D"][1] + TABLE_LEAD_MM * 0.9 + size["W"][1],
-                       diagrams=tuple(diagrams), diagram_contents=boxes_d, written=written, columns=(("D", "W"),),
-                       sizes=tuple((k, float(v[0]), float(v[1])) for k, v in size.items()))
-        return [first] + _panel(plan, style)
-    return [_Panel(plan, content, caption, tuple(rows), w, h, details, boxes, w_poly, h_poly, tuple(detail_at),
-                  tuple(diagrams), boxes_d,
-                  written, stacked, tuple(tuple(c) for c in columns),
-                  tuple((k, float(v[0]), float(v[1])) for k, v in size.items()))]
+            if fit and over > 0:
+                continue
+            found.append(((over, w, h), _Panel(plan, content, caption, tuple(rows), w, h, details, boxes, w_poly, h_poly,
+                                         tuple(detail_at), tuple(diagrams), boxes_d, written, stacked,
+                                         tuple(tuple(c) for c in columns),
+                                         tuple((k, float(v[0]), float(v[1])) for k, v in size.items()))))
+    found.sort(key=lambda f: f[0])
+    return [p for _, p in found]
+
+
+def _split_panel(plan: ForcePlan, style: Style, diagrams: Sequence[GroupDiagram]) -> list[_Panel]:
+    """The group drawn alone and its polygon, each a panel (they do not fit one A3 sheet together)."""
+    boxes_d = tuple(diagram_box(d) for d in diagrams)
+    alone = f"Group {plan.group} drawn alone, μ_l = {diagrams[0].mu:g} m/mm (its force plan follows)"
+    size, written = _blocks(diagrams, boxes_d, False, (0.0, 0.0), (0.0, 0.0))
+    cap = tuple(wrap(alone, size["W"][0], TABLE_TEXT_MM))
+    first = _Panel(plan, bounds([(0.0, 0.0)]), cap, (), max(size["D"][0], size["W"][0]),
+                   TABLE_LEAD_MM * (len(cap) + 0.5) + size["D"][1] + TABLE_LEAD_MM * 0.9 + size["W"][1],
+                   diagrams=tuple(diagrams), diagram_contents=boxes_d, written=written, columns=(("D", "W"),),
+                   sizes=tuple((k, float(v[0]), float(v[1])) for k, v in size.items()))
+    return [first] + _panel(plan, style)
 
 
 #: How a panel's blocks may be set in columns, tried in turn (the narrowest that fits an A3
 #: sheet wins): the diagrams over their equations, the polygon, the table.
-ARRANGEMENTS = ((("D", "W", "T"), ("P",)), (("D", "W"), ("P", "T")), (("D", "W"), ("P",), ("T",)))
+ARRANGEMENTS = ((("D", "W", "T"), ("P",)), (("D", "W"), ("P", "T")), (("D", "W"), ("P",), ("T",)),
+                (("D", "W", "P", "T"),), (("D", "W", "P"), ("T",)))
 PLAIN = ((("P", "T"),), (("P",), ("T",)))
 
 
@@ -259,12 +278,32 @@ def draw_force_plans(plans: Sequence[ForcePlan], heading: Heading, *, ident: str
         alone.setdefault(d.group, []).append(d)
     panels = [q for p in plans for q in _panel(p, style, alone.get(p.group, ()))]
     a3 = FORMATS[2].area
-    groups = _pack(panels, a3.x1 - a3.x0, a3.y1 - a3.y0)
+    room = (a3.x1 - a3.x0, a3.y1 - a3.y0)
+    groups = _pack(panels, *room)
+    if len(plans) > 1 and plans[-1].group.startswith("I(") and len(groups[-1]) == 1 and len(panels) > 1:
+        # the driving link alone on its sheet: another arrangement of it and of the last group's
+        # panel may let the two share one
+        pair = _pair(plans[-2], plans[-1], style, alone, room)
+        if pair is not None:
+            head = _pack(panels[:-2], *room) if len(panels) > 2 else []
+            groups = head + [pair]
     out = []
     for s, placed in enumerate(groups):
         sid = ident if len(groups) == 1 else f"{ident}-{s + 1}"
         out.append(_force_sheet(placed, heading, sid, style))
     return tuple(out)
+
+
+def _pair(last: ForcePlan, crank: ForcePlan, style: Style, alone, room) -> list | None:
+    """The last group's panel and the driving link's on one sheet, beside or below each other,
+    in the first arrangements of the two that fit (the narrowest first); None when none does."""
+    for a in _panel_options(last, style, alone.get(last.group, ())):
+        for b in _panel_options(crank, style, alone.get(crank.group, ())):
+            if a.width + PANEL_GAP_MM + b.width <= room[0] and max(a.height, b.height) <= room[1]:
+                return [(a, 0.0, 0.0), (b, a.width + PANEL_GAP_MM, 0.0)]
+            if max(a.width, b.width) <= room[0] and a.height + PANEL_GAP_MM + b.height <= room[1]:
+                return [(a, 0.0, 0.0), (b, 0.0, a.height + PANEL_GAP_MM)]
+    return None
 
 
 def _force_sheet(placed, heading: Heading, ident: str, style: Style) -> str:
