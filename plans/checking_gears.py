@@ -11,11 +11,16 @@ at most 2·2√2·precision/L radians per line. A point is where it should be wi
 (both rounded), and h, measured between two rounded ordinates, within 2·precision, so μω·μl·h/μV
 may differ from 1 by 2·precision/h (+ 1e-9: the scales are written to the last bit).
 
+An involute pair's meshing sheet (:func:`contact_problems`): the pitch point P stated by its
+detail (``data-pitch-point``) must lie on both working profiles drawn, within the rounding of
+the written points (P is a vertex of each profile).
+
 Imports only the standard library."""
 
 from __future__ import annotations
 
 import math
+import re
 import xml.etree.ElementTree as ET
 
 __all__ = ["gear_problems"]
@@ -48,9 +53,56 @@ def _pole(group: ET.Element) -> tuple[float, float] | None:
     return (xy[0], xy[1]) if len(xy) == 2 and None not in xy else None  # type: ignore[return-value]
 
 
+def _path_points(d: str) -> list[tuple[float, float]]:
+    """The points of a path written as M x,y L x,y … (plans' own polylines)."""
+    out = []
+    for part in re.findall(r"[ML]\s*([-+0-9.eE]+)\s*,\s*([-+0-9.eE]+)", d or ""):
+        out.append((float(part[0]), float(part[1])))
+    return out
+
+
+def _distance_to_polyline(p: tuple[float, float], pts: list[tuple[float, float]]) -> float:
+    best = math.inf
+    for (ax, ay), (bx, by) in zip(pts, pts[1:]):
+        dx, dy = bx - ax, by - ay
+        L2 = dx * dx + dy * dy
+        t = 0.0 if L2 == 0 else max(0.0, min(1.0, ((p[0] - ax) * dx + (p[1] - ay) * dy) / L2))
+        best = min(best, math.hypot(ax + t * dx - p[0], ay + t * dy - p[1]))
+    return best
+
+
+def contact_problems(root: ET.Element, precision: float) -> list[str]:
+    """An involute pair's meshing sheet: the pitch point ``data-pitch-point`` of its detail must lie
+    on both working profiles drawn (``data-working-profile`` 1 and 2): its distance from each
+    polyline within 2·precision (P is a vertex of both, each rounded)."""
+    out = []
+    for g in root.iter(f"{_SVG}g"):
+        if g.get("data-pitch-point") is None:
+            continue
+        xy = [_float(c) for c in g.get("data-pitch-point").split(",")]
+        if len(xy) != 2 or None in xy:
+            out.append(f"plan {g.get('id')}: data-pitch-point {g.get('data-pitch-point')!r} is not a paper x,y")
+            continue
+        flanks = {e.get("data-working-profile"): _path_points(e.get("d")) for e in root.iter(f"{_SVG}path")
+                  if e.get("data-working-profile") is not None}
+        for wheel in ("1", "2"):
+            pts = flanks.get(wheel)
+            if not pts or len(pts) < 2:
+                out.append(f"plan {g.get('id')}: the working profile of wheel {wheel} is not drawn")
+                continue
+            dist = _distance_to_polyline((xy[0], xy[1]), pts)
+            if not dist <= 2.0 * precision + 1e-9:
+                out.append(f"plan {g.get('id')}: P is {dist:.4g} mm off the working profile of wheel {wheel} "
+                           f"(tolerance {2.0 * precision:.2g} mm): the pair drawn does not touch at P")
+    return out
+
+
 def gear_problems(root: ET.Element, precision: float) -> list[str]:
     """The failures of the gear sheet's rays and scales (none when the file has no ``data-ray``
-    and no angular-velocity picture)."""
+    and no angular-velocity picture), and of a meshing sheet's contact at P."""
+    contact = contact_problems(root, precision)
+    if contact or any(g.get("data-pitch-point") is not None for g in root.iter(f"{_SVG}g")):
+        return contact
     pictures = [g for g in root.iter(f"{_SVG}g") if g.get("data-plan") == "gear-omega"]
     rays = [e for e in root.iter(f"{_SVG}line") if e.get("data-ray") is not None]
     if not rays and not pictures:

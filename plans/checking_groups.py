@@ -34,7 +34,7 @@ __all__ = ["check_group_diagram", "GROUP", "MIN_ARM_MM"]
 #: ``data-plan`` of a group drawn alone.
 GROUP = "group"
 #: A force whose line passes this far (mm) or farther from an equation's centre must have its arm
-#: drawn (the writer's promise, plans.drawing.group_diagram.MIN_ARM_MM, restated).
+#: drawn (the writer's promise, plans.constructions.group_diagram.ARM_MM, restated).
 MIN_ARM_MM = 0.5
 _REL = 1e-9
 
@@ -127,7 +127,7 @@ def _equation(report, gid, unknown, links, about, centre, forces, couples, mu, r
         cross = (tx - cx) * u[1] - (ty - cy) * u[0]          # paper frame, y down: clockwise on paper positive
         if q == unknown:
             x_arm = abs(cross)
-        elif abs(cross) >= MIN_ARM_MM and (q, about) not in drawn:
+        elif abs(cross) >= MIN_ARM_MM + r and (q, about) not in drawn:     # + r: the tail's rounding
             report.problems.append(f"plan {gid}: {q}: its arm about {about} ({abs(cross):.3g} mm) is not drawn")
         total += -value * cross * mu                           # N·m, counter-clockwise positive
         bound += value * r * mu

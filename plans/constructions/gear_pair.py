@@ -9,8 +9,17 @@ centre distance a_w and the radii are drawn from the centres and tagged with μ 
 
 Meshing: P at the origin, the line of centres vertical (O1 below, O2 above), the common tangent
 horizontal; the line of action through P at α_w, from N1 (tangent to base circle 1, lower left)
-to N2; B2 and B1 where it crosses the tip circles of wheel 2 and wheel 1. A space of wheel 1 and
-a tooth of wheel 2 are centred on the line of centres.
+to N2; B2 and B1 where it crosses the tip circles of wheel 2 and wheel 1. The wheels are turned
+so that one pair of profiles touches at P: wheel 1's flank facing the line of action (the left
+flank of its space 0) and wheel 2's (the same flank of its space 0, the wheel turned half a turn)
+both pass through P; the other teeth follow at the pitch. That pair's working profiles are
+drawn thick, from the radius where contact begins on them (|O1B2|, |O2B1|, carried from B2, B1
+by thin arcs about O1, O2) to the tips; the arc of action is marked on both working circles
+(the turn of each wheel while its profile runs along B2B1: |PB2|/r_b and |PB1|/r_b either side
+of P). Below the detail, the specific-sliding diagram: the line of action N1N2 straightened
+(at the detail's scale) and over its active part B2B1 the specific sliding of each wheel,
+λ1 = 1 − ρ2/(u·ρ1), λ2 = 1 − u·ρ1/ρ2 (ρ1 = the distance from N1, ρ2 = from N2, u = z2/z1), at
+its own scale μλ (1/mm), its ordinates at B1 and B2 tagged (group ``sliding``).
 
 Cutting: the wheel's centre below, the cutter at φ = 0 (a tooth centred on the +y axis, in the
 space it cuts), its reference line x·m above the pitch line, which touches the reference circle.
@@ -27,7 +36,7 @@ import shapely
 from ..gears.pair import PairAnalysis
 from .gear_cutting import cut_wheel, cutter_tooth, flank_angle
 
-__all__ = ["PairSheet", "Tag", "meshing", "cutting", "ENLARGEMENTS", "MODULE_MM"]
+__all__ = ["PairSheet", "Tag", "meshing", "cutting", "contact_turns", "specific_sliding", "ENLARGEMENTS", "MODULE_MM"]
 
 #: Enlargement scales k:1 of the detail, and reductions k0:1 (k0 < 1) of the general view.
 ENLARGEMENTS = (1.0, 2.0, 2.5, 4.0, 5.0, 10.0, 20.0, 25.0, 40.0, 50.0, 100.0)
@@ -42,8 +51,9 @@ CUT_TOLERANCE = 1e-4
 
 @dataclass(frozen=True)
 class Tag:
-    """A measured segment: ``group`` ("detail" or "overview"), ``quantity``, ``value`` (mm of
-    the wheel), paper ends ``a``, ``b``, and the names of its ends."""
+    """A measured segment: ``group`` ("detail", "overview" or "sliding"), ``quantity``, ``value``
+    (mm of the wheel; a specific sliding's |λ| in the ``sliding`` group), paper ends ``a``,
+    ``b``, and the names of its ends."""
 
     group: str
     quantity: str
@@ -56,12 +66,13 @@ class Tag:
 @dataclass
 class PairSheet:
     """Paper geometry: ``k`` (detail) and ``k0`` (general view, 0 when none); ``outlines``
-    (name, closed polylines), ``curves`` (name, kind "thin" | "dash" | "thick" | "axis",
-    polyline), ``tags``, ``points`` (name, xy) marked with a dot and labelled, ``labels`` (text,
+    (name, closed polylines), ``curves`` (name, kind "thin" | "dash" | "thick" | "thickdash" |
+    "arc" | "axis", polyline), ``tags``, ``points`` (name, xy) marked with a dot and labelled, ``labels`` (text,
     anchor, preferred direction) and the ``notes``' values."""
 
     k: float
     k0: float = 0.0
+    mu_sliding: float = 0.0                 # μλ of the specific-sliding diagram, 1/mm (0: none)
     outlines: list[tuple[str, np.ndarray]] = field(default_factory=list)
     curves: list[tuple[str, str, np.ndarray]] = field(default_factory=list)
     tags: list[Tag] = field(default_factory=list)
@@ -75,18 +86,23 @@ class PairSheet:
         return float(a[:, 0].min()), float(a[:, 1].min()), float(a[:, 0].max()), float(a[:, 1].max())
 
 
-#: The detail's largest width and height on the sheet, mm (the general view and notes beside it).
+#: The detail's largest width and height on the sheet, mm (the general view and notes beside it;
+#: the meshing detail leaves room below it for the specific-sliding diagram).
 DETAIL_MM = (250.0, 185.0)
+MESHING_MM = (250.0, 135.0)
+#: The largest ordinate of the specific-sliding diagram, mm, and the mantissas of μλ.
+SLIDING_MM = 30.0
+SLIDING_SERIES = (1.0, 2.0, 2.5, 4.0, 5.0)
 
 
-def _scale_for(m: float, size: tuple[float, float] | None = None) -> float:
+def _scale_for(m: float, size: tuple[float, float] | None = None, room: tuple[float, float] = DETAIL_MM) -> float:
     """The detail's enlargement: the largest of the series that keeps the detail (``size`` at
     1:1, mm) within :data:`DETAIL_MM`, and at least the smallest that draws the module ≥
     :data:`MODULE_MM` long."""
     least = next((k for k in ENLARGEMENTS if m * k >= MODULE_MM - 1e-9), ENLARGEMENTS[-1])
     if size is None:
         return least
-    fits = [k for k in ENLARGEMENTS if k >= least and size[0] * k <= DETAIL_MM[0] and size[1] * k <= DETAIL_MM[1]]
+    fits = [k for k in ENLARGEMENTS if k >= least and size[0] * k <= room[0] and size[1] * k <= room[1]]
     return max(fits) if fits else least
 
 
@@ -126,10 +142,19 @@ def meshing(a: PairAnalysis, k: float | None = None) -> PairSheet:
     p = a.pair
     if k is None:
         x0, y0, x1, y1 = _detail(a, 1.0).bounds()
-        k = _scale_for(p.module, (x1 - x0, y1 - y0))
+        k = _scale_for(p.module, (x1 - x0, y1 - y0), MESHING_MM)
     sheet = _detail(a, k)
+    _sliding(sheet, a)
     _overview(sheet, a)
     return sheet
+
+
+def contact_turns(a: PairAnalysis) -> tuple[float, float]:
+    """The clockwise turns (rad) of wheels 1 and 2 that put the left flank of each one's space 0
+    through P: wheel 1 by β1(r_w1), wheel 2 by π + β2(r_w2) (:func:`flank_angle`)."""
+    p = a.pair
+    b = [float(flank_angle(np.array([p.dw[i] / 2.0]), p.module, p.z[i], p.alpha, p.x[i])[0]) for i in (0, 1)]
+    return b[0], math.pi + b[1]
 
 
 def _detail(a: PairAnalysis, k: float) -> PairSheet:
@@ -138,10 +163,11 @@ def _detail(a: PairAnalysis, k: float) -> PairSheet:
     rw = [v / 2.0 for v in p.dw]
     o1, o2 = np.array([0.0, -rw[0] * k]), np.array([0.0, rw[1] * k])
     tau = [2.0 * math.pi / z for z in p.z]
+    turns = contact_turns(a)
     for j, o in enumerate(_outlines(_wheel(a, 0, 5, -2))):
-        sheet.outlines.append((f"wheel1-{j}" if j else "wheel1", _turned(o, 0.0, k, o1)))
-    for j, o in enumerate(_outlines(_wheel(a, 1, 6, -2))):
-        sheet.outlines.append((f"wheel2-{j}" if j else "wheel2", _turned(o, math.pi - 0.5 * tau[1], k, o2)))
+        sheet.outlines.append((f"wheel1-{j}" if j else "wheel1", _turned(o, turns[0], k, o1)))
+    for j, o in enumerate(_outlines(_wheel(a, 1, 5, -2))):
+        sheet.outlines.append((f"wheel2-{j}" if j else "wheel2", _turned(o, turns[1], k, o2)))
     # the circles of each wheel over the teeth drawn
     spans = ((o1, 0.0, 2.6 * tau[0]), (o2, math.pi, 2.6 * tau[1]))
     for i, (centre, mid, half) in enumerate(spans):
@@ -156,7 +182,8 @@ def _detail(a: PairAnalysis, k: float) -> PairSheet:
     b1 = n1 + u * g[0] * k
     b2 = n2 - u * g[1] * k
     sheet.curves.append(("line-of-action", "thin", np.array([n1, n2])))
-    sheet.curves.append(("tangent", "dash", np.array([[-3.0 * p.module * k, 0.0], [3.0 * p.module * k, 0.0]])))
+    reach = float(np.hypot(*n1)) + 6.0
+    sheet.curves.append(("tangent", "dash", np.array([[-reach, 0.0], [max(3.0 * p.module * k, 12.0), 0.0]])))
     sheet.curves.append(("centres", "axis", np.array([[0.0, -2.2 * p.module * k - 12.0],
                                                        [0.0, 2.2 * p.module * k + 12.0]])))
     sheet.tags.append(Tag("detail", "B1B2", p.active, tuple(b2), tuple(b1), ("B2", "B1")))
@@ -168,23 +195,34 @@ def _detail(a: PairAnalysis, k: float) -> PairSheet:
         nrm = np.array([-u[1], u[0]]) * 1.5
         sheet.curves.append((f"pb-tick{j}", "thin", np.array([q - nrm, q + nrm])))
     sheet.points += [("N_1", tuple(n1)), ("N_2", tuple(n2)), ("B_1", tuple(b1)), ("B_2", tuple(b2)), ("P", (0.0, 0.0))]
-    # the working profiles: the parts of the flanks at P that come into contact, from the radius
-    # where the active line begins on them (|O1B2|, |O2B1|) to the tip, drawn exact and thick
+    # the pair in contact at P: its working profiles, from the radius where contact begins on them
+    # (|O1B2|, |O2B1|) to the tip, each sampled at r_w too (P is a vertex of both)
     lower = (float(np.hypot(*(b2 - o1))) / k, float(np.hypot(*(b1 - o2))) / k)
-    for i, (centre, turn) in enumerate(((o1, 0.0), (o2, math.pi - 0.5 * tau[1]))):
-        rs = np.linspace(lower[i], p.da[i] / 2, 60)
-        beta = flank_angle(rs, p.module, p.z[i], p.alpha, p.x[i])
-        for side, b in (("right", beta), ("left", (tau[i] - beta) if i else -beta)):
-            pts = np.column_stack([rs * np.sin(b), rs * np.cos(b)])
-            sheet.curves.append((f"working-profile{i + 1}-{side}", "thick", _turned(pts, turn, k, centre)))
-    arc = 14.0
-    sheet.curves.append(("alpha-w", "thin", np.array([[-arc * math.cos(t), -arc * math.sin(t)]
+    for i, (centre, turn, begin) in enumerate(((o1, turns[0], b2), (o2, turns[1], b1))):
+        rs = np.unique(np.append(np.linspace(lower[i], p.da[i] / 2, 60), rw[i]))
+        beta = -flank_angle(rs, p.module, p.z[i], p.alpha, p.x[i])
+        pts = _turned(np.column_stack([rs * np.sin(beta), rs * np.cos(beta)]), turn, k, centre)
+        sheet.curves.append((f"working-profile{i + 1}", "thick", pts))
+        # the beginning of the working profile carried from B2 (B1) by an arc about its centre
+        start = pts[0]
+        a0 = math.atan2(begin[0] - centre[0], begin[1] - centre[1])
+        a1 = math.atan2(start[0] - centre[0], start[1] - centre[1])
+        a1 = a0 + (a1 - a0 + math.pi) % (2.0 * math.pi) - math.pi         # the short way round
+        sheet.curves.append((f"working-start{i + 1}", "thin", _arc(centre, lower[i] * k, a0, a1, 40)))
+    # the arc of action on each working circle: the turn while the profile runs from B2 to B1
+    pb2, pb1 = float(np.hypot(*b2)) / k, float(np.hypot(*b1)) / k
+    rb = [d / 2.0 for d in p.db]
+    for i, (centre, mid, before, after) in enumerate(((o1, 0.0, -pb2 / rb[0], pb1 / rb[0]),
+                                                      (o2, math.pi, -pb1 / rb[1], pb2 / rb[1]))):
+        sheet.curves.append((f"arc-of-action{i + 1}", "arc", _arc(centre, rw[i] * k, mid + before, mid + after, 60)))
+    radius = 0.6 * float(np.hypot(*n1))
+    sheet.curves.append(("alpha-w", "thin", np.array([[-radius * math.cos(t), -radius * math.sin(t)]
                                                        for t in np.linspace(0.0, p.alpha_w, 30)])))
     mid_a = 0.5 * p.alpha_w
-    sheet.labels.append(("α_w", (-(arc + 2.0) * math.cos(mid_a), -(arc + 2.0) * math.sin(mid_a)), (-1.0, -0.3)))
+    sheet.labels.append(("α_{w}", (-radius * math.cos(mid_a), -radius * math.sin(mid_a)), (-0.3, -1.0)))
     # chordal tooth thicknesses, on teeth clear of P: wheel 1's second tooth left of P, wheel 2's
     # second tooth right of it
-    for i, (centre, mid) in enumerate(((o1, -1.5 * tau[0]), (o2, math.pi - 2.0 * tau[1]))):
+    for i, (centre, mid) in enumerate(((o1, turns[0] - 1.5 * tau[0]), (o2, turns[1] - 1.5 * tau[1]))):
         for name, d, s in (("s", p.d[i], p.s[i]), ("sa", p.da[i], p.sa[i])):
             half = s / d
             e0 = centre + np.array([math.sin(mid - half), math.cos(mid - half)]) * d / 2 * k
@@ -192,6 +230,56 @@ def _detail(a: PairAnalysis, k: float) -> PairSheet:
             sheet.tags.append(Tag("detail", f"{name}{i + 1}", d * math.sin(half), tuple(e0), tuple(e1),
                                   (f"{name}{i + 1}a", f"{name}{i + 1}b")))
     return sheet
+
+
+def specific_sliding(a: PairAnalysis, rho1: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """λ1, λ2 at the points of the line of action ``rho1`` (mm) from N1: λ1 = 1 − ρ2/(u·ρ1),
+    λ2 = 1 − u·ρ1/ρ2, ρ2 = N1N2 − ρ1, u = z2/z1 (the forms of :mod:`plans.gears.involute`)."""
+    p = a.pair
+    u = p.z[1] / p.z[0]
+    rho1 = np.asarray(rho1, float)
+    rho2 = p.line - rho1
+    return 1.0 - rho2 / (u * rho1), 1.0 - u * rho1 / rho2
+
+
+def _sliding(sheet: PairSheet, a: PairAnalysis) -> None:
+    """The specific-sliding diagram below the detail (see the module)."""
+    p = a.pair
+    k = sheet.k
+    x0, y0, x1, _ = sheet.bounds()
+    g = [math.sqrt(max((da / 2) ** 2 - (db / 2) ** 2, 0.0)) for da, db in zip(p.da, p.db)]
+    rho_b2, rho_b1 = p.line - g[1], g[0]            # B2 and B1 from N1, mm
+    if not (0.0 < rho_b2 < rho_b1 < p.line):
+        return                                       # interference: the sliding is not defined there
+    rho = np.linspace(rho_b2, rho_b1, 80)
+    l1, l2 = specific_sliding(a, rho)
+    top = float(max(np.max(np.abs(l1)), np.max(np.abs(l2)), 1.0))
+    mu = min(m * 10.0 ** e for e in range(-3, 4) for m in SLIDING_SERIES if top / (m * 10.0 ** e) <= SLIDING_MM)
+    sheet.mu_sliding = mu
+    up = float(max(np.max(l1), np.max(l2), 0.0)) / mu
+    base = y0 - 14.0 - up                            # the axis, below the detail
+    left = -p.line / 2.0 * k
+    at = {name: left + r * k for name, r in (("N_1", 0.0), ("B_2", rho_b2), ("P", p.line - p.dw[1] / 2.0 *
+                                                                                math.sin(p.alpha_w)),
+                                             ("B_1", rho_b1), ("N_2", p.line))}
+    sheet.curves.append(("sliding-axis", "thin", np.array([[at["N_1"] - 4.0, base], [at["N_2"] + 4.0, base]])))
+    for name, x in at.items():
+        sheet.curves.append((f"sliding-tick-{name}", "thin", np.array([[x, base - 1.2], [x, base + 1.2]])))
+        sheet.labels.append((name.replace("_", "_{") + "}" if "_" in name else name, (x, base - 1.2), (0.0, -1.0)))
+    xs = left + rho * k
+    for i, lam in enumerate((l1, l2)):
+        sheet.curves.append((f"sliding{i + 1}", "thick" if i == 0 else "thickdash", np.column_stack([xs, base + lam / mu])))
+        end = len(xs) - 1 if i == 0 else 0
+        sheet.labels.append((f"λ_{{{i + 1}}}", (float(xs[end]), float(base + lam[end] / mu)), (1.0 if i == 0 else -1.0,
+                                                                                             0.3)))
+    for name, r in (("B2", rho_b2), ("B1", rho_b1)):
+        v1, v2 = specific_sliding(a, np.array([r]))
+        x = left + r * k
+        for i, v in enumerate((float(v1[0]), float(v2[0]))):
+            sheet.tags.append(Tag("sliding", f"λ{i + 1}:{name}", abs(v), (x + (i - 0.5) * 1.2, base),
+                                  (x + (i - 0.5) * 1.2, base + v / mu), (f"axis-{name}", f"λ{i + 1}-{name}")))
+    sheet.labels.append((f"specific sliding λ_{{1}}, λ_{{2}} along N_{{1}}N_{{2}} (μ_{{λ}} = {mu:g} 1/mm)",
+                         (left, base + up + 6.0), (1.0, 0.0)))
 
 
 def _overview(sheet: PairSheet, a: PairAnalysis) -> None:

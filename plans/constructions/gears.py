@@ -242,8 +242,9 @@ def _arms(analysis: GearAnalysis, radius: dict[str, float]) -> dict[str, float]:
     return out
 
 
-def gear_sheet(analysis: GearAnalysis) -> GearSheet:
-    """The gear sheet of a solved train (see the module)."""
+def gear_sheet(analysis: GearAnalysis, *, side_max: float = SIDE_MAX_MM) -> GearSheet:
+    """The gear sheet of a solved train (see the module); ``side_max``: the side view's largest
+    height, mm (smaller where the sheet would not fit A3 otherwise)."""
     speeds = analysis.speeds
     s, train = speeds.structure, speeds.train
     nominal = analysis.geometry is None
@@ -265,7 +266,7 @@ def gear_sheet(analysis: GearAnalysis) -> GearSheet:
     mirrored = bool(train.carriers)
     extent = 2.0 * top if mirrored else top + max(0.0, -min(height[link_of[w.name].name] - radius[w.name]
                                                          for w in train.wheels))
-    mu_l = standard_scale(extent, window=(0.55 * SIDE_MAX_MM, SIDE_MAX_MM), limit=SIDE_MAX_MM, extent=extent)
+    mu_l = standard_scale(extent, window=(0.55 * side_max, side_max), limit=side_max, extent=extent)
     mm = 1.0 / mu_l                                      # paper mm per metre
     spans = _spans(analysis, radius, height)
     v_max = max(abs(v_at(link, y)) for link, (y0, y1) in spans.items() for y in (y0, y1))

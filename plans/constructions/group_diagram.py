@@ -37,7 +37,7 @@ from ..structure import ComplexGroup, Group
 from .scales import fitting_scale
 
 __all__ = ["DiagramForce", "DiagramCouple", "Arm", "MomentTerm", "MomentEquation", "GroupDiagram",
-           "group_diagrams", "DIAGRAM_MM", "LINK_MM", "ZERO_REL"]
+           "group_diagrams", "DIAGRAM_MM", "LINK_MM", "ZERO_REL", "ARM_MM"]
 
 #: Largest extent of a group drawn alone, mm: μl is the finest series scale that keeps it within
 #: (of a single link, the driving link, :data:`LINK_MM`).
@@ -45,6 +45,9 @@ DIAGRAM_MM = 100.0
 LINK_MM = 60.0
 #: A force below this fraction of the diagram's largest is zero there: not drawn, no term.
 ZERO_REL = 1e-12
+#: An arm shorter than this on the diagram, mm, is not drawn (its force's line passes next to
+#: the centre); its equation writes its length as a number instead of h_k.
+ARM_MM = 0.5
 
 
 def _pt(v) -> tuple[float, float]:
@@ -495,7 +498,7 @@ def _finish(b: _Builder, group: str, eqs: list[tuple], method: str, notes: list[
         equations.append(e)
         c = np.asarray(centre, float)
         for t in list(e.terms) + [MomentTerm(e.unknown, e.value, e.arm, e.sign)]:
-            if t.arm is None or t.arm == 0.0:
+            if t.arm is None or t.arm / mu < ARM_MM:
                 continue
             f, where = next((f, w) for f, w in b.forces_w if f.quantity == t.quantity)
             d = np.asarray(f.direction)

@@ -1,9 +1,12 @@
 """The involute pair's sheets (``-meshing``, ``-cutting``) from their paper geometry
 (:mod:`plans.constructions.gear_pair`): the wheels' outlines filled light, their circles, the
 line of action and its active part, the cutter, and the measured segments in ``<g
-data-plan="bound">`` groups (``data-mu`` = 1/k mm per paper mm), so that ``plans check``
-measures them; the meshing sheet's group also states ``data-contact-ratio``, which ``plans
-check`` compares with the drawn B1B2 over the drawn p_b.
+data-plan="bound">`` groups (``data-mu`` = 1/k mm per paper mm; the specific-sliding
+diagram's ordinates λ1, λ2 at B1, B2 in a group of their own, ``data-mu`` = μλ per paper mm),
+so that ``plans check`` measures them; the meshing sheet's group also states
+``data-contact-ratio``, which ``plans check`` compares with the drawn B1B2 over the drawn p_b,
+and ``data-pitch-point`` (P on the paper), which must lie on both working profiles drawn
+(``<path data-working-profile="1">``, ``"2"``) within drawing precision.
 """
 
 from __future__ import annotations
@@ -18,7 +21,7 @@ from .text import wrap
 __all__ = ["draw_pair_sheet"]
 
 _FILL = {"wheel": "#dfe8f3", "wheel2": "#e4efdf", "cutter": "#f2e3c9"}
-_NAMES = {"B1B2": "B_1B_2", "pb": "p_b", "aw": "a_w", "xm": "x·m", "s1": "s̄_1", "s2": "s̄_2", "sa1": "s̄_{a1}",
+_NAMES = {"B1B2": "B_{1}B_{2}", "pb": "p_b", "aw": "a_w", "xm": "x·m", "s1": "s̄_1", "s2": "s̄_2", "sa1": "s̄_{a1}",
           "sa2": "s̄_{a2}", "ra1": "r_{a1}", "ra2": "r_{a2}", "rb1": "r_{b1}", "rb2": "r_{b2}", "p": "p", "h": "h"}
 
 
@@ -44,12 +47,17 @@ def draw_pair_sheet(s: PairSheet, heading: Heading, *, ident: str, style: Style 
             attrs["stroke_dasharray"] = "3 1.5"
         elif kind == "axis":
             attrs["stroke_dasharray"] = "8 1.5 1 1.5"
-        elif kind == "thick":
+        elif kind in ("thick", "thickdash", "arc"):
             attrs["stroke_width"] = fmt(style.link, 3)
-            attrs["stroke"] = style.vector_colour
-        canvas.polyline(lines, [tuple(p) for p in pts], width=style.link if kind == "thick" else style.thin,
-                        id=f"{ident}-{name}", **attrs)
-    for group, mu in (("detail", 1.0 / s.k), ("overview", 1.0 / s.k0 if s.k0 else 0.0)):
+            attrs["stroke"] = style.component_colour if kind == "arc" else style.vector_colour
+            if kind == "thickdash":
+                attrs["stroke_dasharray"] = "4 1.5"
+        heavy = kind in ("thick", "thickdash", "arc")
+        el = canvas.polyline(lines, [tuple(p) for p in pts], width=style.link if heavy else style.thin,
+                             id=f"{ident}-{name}", **attrs)
+        if name.startswith("working-profile"):
+            el.attribs["data-working-profile"] = name.removeprefix("working-profile")
+    for group, mu in (("detail", 1.0 / s.k), ("overview", 1.0 / s.k0 if s.k0 else 0.0), ("sliding", s.mu_sliding)):
         tags = [t for t in s.tags if t.group == group]
         if not tags:
             continue
@@ -59,9 +67,14 @@ def draw_pair_sheet(s: PairSheet, heading: Heading, *, ident: str, style: Style 
         g.attribs["data-vectors"] = str(len(tags))
         if group == "detail" and contact_ratio is not None:
             g.attribs["data-contact-ratio"] = repr(contact_ratio)
+        pitch = next((xy for name, xy in s.points if name == "P"), None)
+        if group == "detail" and any(n.startswith("working-profile") for n, _, _ in s.curves) and pitch is not None:
+            g.attribs["data-pitch-point"] = ",".join(canvas.xy(pitch))
         for t in tags:
             el = canvas.line(g, t.a, t.b, width=style.link, id=f"{ident}-{t.quantity}")
             _tag(el, canvas, t.quantity, t.value, t.a, t.b, *t.ends)
+            if group == "sliding":
+                continue                     # its curves are labelled λ1, λ2 (the ordinates at B1, B2 measured)
             mid = (0.5 * (t.a[0] + t.b[0]), 0.5 * (t.a[1] + t.b[1]))
             canvas.label(g, mid, _NAMES.get(t.quantity, t.quantity), size=style.text, ident=f"{ident}-{t.quantity}-l",
                          fill=style.component_colour)

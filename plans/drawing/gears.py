@@ -11,6 +11,7 @@ link's line.
 from __future__ import annotations
 
 import math
+from typing import Callable
 
 from ..constructions.gears import GearSheet
 from .canvas import Canvas, fmt
@@ -21,7 +22,7 @@ from .style import Style
 from .svg import Heading
 from .text import runs, width
 
-__all__ = ["draw_gears"]
+__all__ = ["draw_gears", "fits", "to_fit"]
 
 #: Length of the ticks at a wheel's pitch diameter, mm (each side of the wheel's line).
 TICK_MM = 2.0
@@ -142,6 +143,24 @@ def _table(dwg, canvas: Canvas, sheet: GearSheet, at: tuple[float, float], ident
 def _number(x: float, digits: int) -> str:
     """A table entry: ``digits`` significant digits, a true minus sign."""
     return "0" if x == 0.0 else f"{x:.{digits}g}".replace("-", "−")
+
+
+def fits(sheet: GearSheet) -> bool:
+    """Whether the sheet's content (the side view, pictures, table, end view and the notes' room)
+    fits an A3 sheet's drawing area."""
+    x0, y0, x1, y1 = bounds(_coords(sheet))
+    return choose_format(x1 - x0, y1 - y0 + NOTE_ROOM_MM) is not None
+
+
+def to_fit(build: Callable[[float], GearSheet], side_max: float) -> GearSheet:
+    """``build(side)`` for the largest side-view height from ``side_max`` down (steps of 0.8×) whose
+    sheet fits A3 (:func:`fits`); the smallest tried when none does."""
+    side = side_max
+    sheet = build(side)
+    while not fits(sheet) and side > 0.2 * side_max:
+        side *= 0.8
+        sheet = build(side)
+    return sheet
 
 
 def draw_gears(sheet: GearSheet, heading: Heading, *, ident: str, style: Style = Style(),

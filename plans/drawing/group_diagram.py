@@ -36,8 +36,6 @@ __all__ = ["diagram_box", "draw_group_diagram", "diagram_rows", "FORCE_ARROW_MM"
 FORCE_ARROW_MM = 14.0
 #: Radius of a couple's curved arrow, mm.
 COUPLE_RADIUS_MM = 5.0
-#: Arms shorter than this are not drawn (the force's line passes through the centre), mm.
-MIN_ARM_MM = 0.5
 
 
 def name(quantity: str) -> str:
@@ -71,7 +69,7 @@ def draw_group_diagram(dwg, canvas: Canvas, d: GroupDiagram, ident: str, style: 
     g.attribs["data-plan"] = "group"
     g.attribs["data-group"] = d.group
     g.attribs["data-mu"] = repr(d.mu)
-    g.attribs["data-vectors"] = str(len(d.forces) + sum(1 for a in d.arms if _arm_drawn(d, a)))
+    g.attribs["data-vectors"] = str(len(d.forces) + len(d.arms))
     labels = dwg.g(id=f"{ident}-glabels", fill=style.colour)
     thin = fmt(style.thin, 3)
     links = dwg.g(id=f"{ident}-links", stroke=style.colour, stroke_width=fmt(style.link, 3), fill="none")
@@ -109,8 +107,6 @@ def draw_group_diagram(dwg, canvas: Canvas, d: GroupDiagram, ident: str, style: 
         _couple(canvas, g, labels, c, f"{ident}-c{k}", style)
     arms = dwg.g(id=f"{ident}-arms", stroke=style.construction_colour, stroke_width=thin, fill="none")
     for k, a in enumerate(d.arms):
-        if not _arm_drawn(d, a):
-            continue
         f = d.force(a.force)
         el = canvas.line(arms, a.centre, a.foot, id=f"{ident}-a{k}")
         el.attribs["data-quantity"] = f"h:{a.force}"
@@ -145,10 +141,6 @@ def _cross_at(f, xy) -> float:
     """How far ``xy`` is off force f's line, mm (signed)."""
     u = f.direction
     return (xy[0] - f.at[0]) * u[1] - (xy[1] - f.at[1]) * u[0]
-
-
-def _arm_drawn(d: GroupDiagram, a) -> bool:
-    return a.value / d.mu >= MIN_ARM_MM
 
 
 def _couple(canvas: Canvas, g, labels, c, ident: str, style: Style) -> None:
@@ -209,8 +201,8 @@ def _equation_rows(d: GroupDiagram, e: MomentEquation, numbers: dict) -> list[st
             sym.append(f"{sign} {name(t.quantity)}/μ_l")
             num.append(f"{sign} {_number(t.value)}/{mu:g}")
         else:
-            h = numbers.get((t.quantity, e.about))
-            hs = f"h_{_sub(str(h))}" if h is not None else "h"
+            h = numbers.get((t.quantity, e.about))          # an arm under ARM_MM is not drawn: its length
+            hs = f"h_{_sub(str(h))}" if h is not None else _number(t.arm / mu)
             sym.append(f"{sign} {name(t.quantity)}·{hs}")
             num.append(f"{sign} {_number(t.value)}·{_number(t.arm / mu)}")
     lhs = " ".join(sym).lstrip("+ ") or "0"

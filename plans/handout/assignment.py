@@ -306,10 +306,10 @@ def _sizes(boxes: list) -> list[tuple[float, float]]:
 def _train_sheet(d: Drawn, asked: tuple[Asked, ...], variant: str) -> str:
     """A gear train's assignment: its gear sheet without the pictures, the speeds left empty
     but for the inputs and the held links; the pictures' room framed where the key draws them."""
-    from ..constructions.gears import gear_sheet
+    from ..constructions.gears import SIDE_MAX_MM, gear_sheet
     from ..drawing import Style
     from ..drawing.assignment import add_frames, gear_frames
-    from ..drawing.gears import draw_gears
+    from ..drawing.gears import draw_gears, to_fit
     from ..drawing.svg import Heading
 
     scene, train = d.scene, d.sheets.train
@@ -319,7 +319,8 @@ def _train_sheet(d: Drawn, asked: tuple[Asked, ...], variant: str) -> str:
              + ("; every wheel's module " + ", ".join(f"m_{{{w.name}}} = {w.module:g} mm" for w in scene.gears.wheels)
                 if all(w.module for w in scene.gears.wheels) else "") + ".",
              task_text(scene, asked, []))
-    svg = draw_gears(gear_sheet(train), Heading(scene.title, f"Assignment, {variant}", inputs), ident="assignment",
+    sheet = to_fit(lambda side: gear_sheet(train, side_max=side), SIDE_MAX_MM)       # as the key's
+    svg = draw_gears(sheet, Heading(scene.title, f"Assignment, {variant}", inputs), ident="assignment",
                      style=Style(), notes=notes, given=given)
     key = next((s.svg for s in d.sheets if s.name == "gears"), None)
     return svg if key is None else add_frames(svg, gear_frames(key, svg), "assignment", Style())

@@ -1,6 +1,8 @@
-"""The six layout faults of one sheet (:func:`measure_layout`, :class:`LayoutReport`):
+"""The seven layout faults of one sheet (:func:`measure_layout`, :class:`LayoutReport`):
 overlapping labels, labels crossing lines, labels off the sheet, long arrowheads, beyond A3,
-overlapping vertex letters of force plans.
+overlapping vertex letters of force plans, and drawn elements outside the drawing area (any
+inked line, outline or fill of the drawing — not the frame's, the title block's — that leaves
+the frame or runs into the title block).
 
 Knows :mod:`.sheet` (what the sheet holds) and :mod:`.parsing`; must not import anything that
 draws a sheet.
@@ -54,6 +56,7 @@ class LayoutReport:
     long_heads: int
     beyond_a3: int
     overlapping_vertex_letters: int = 0
+    ink_off_area: int = 0        #: drawn elements leaving the frame or entering the title block
     overlaps: tuple[str, ...] = ()
     crossings: tuple[str, ...] = ()
     off_sheet: tuple[str, ...] = ()
@@ -62,12 +65,13 @@ class LayoutReport:
     labels: int = 0              #: texts measured
     unmatched_heads: tuple[str, ...] = field(default=())
     vertex_letters: tuple[str, ...] = ()
+    outside: tuple[str, ...] = ()
 
     COUNTS = ("overlapping_labels", "labels_crossing_lines", "labels_off_sheet", "long_heads", "beyond_a3",
-              "overlapping_vertex_letters")
+              "overlapping_vertex_letters", "ink_off_area")
     DETAILS = {"overlapping_labels": "overlaps", "labels_crossing_lines": "crossings",
                "labels_off_sheet": "off_sheet", "long_heads": "heads", "beyond_a3": "oversize",
-               "overlapping_vertex_letters": "vertex_letters"}
+               "overlapping_vertex_letters": "vertex_letters", "ink_off_area": "outside"}
 
     @property
     def counts(self) -> dict[str, int]:
@@ -174,6 +178,22 @@ def measure_layout(svg_text: str | bytes) -> LayoutReport:
                 what = "the frame" if t.title or not inner.covers(p) else "the drawing area (it meets the title block)"
                 off.append(f"{t.name} {_fmt_box(t.box)} is not inside {what}")
 
+    # -- drawn elements outside the drawing area ---------------------------------------------------
+    outside: list[str] = []
+    n_outside = 0
+    room = area.buffer(ROUNDING_MM, join_style="mitre")
+    for k in ink:
+        if k.layer in ("frame", "title"):
+            continue
+        g = k.geometry()
+        if not room.covers(g):
+            n_outside += 1
+            if len(outside) < SHOWN:
+                b = g.bounds
+                where = "leaves the frame" if not inner.buffer(ROUNDING_MM, join_style="mitre").covers(g) else \
+                    "runs into the title block"
+                outside.append(f"{k.name} {_fmt_box(b)} {where}")
+
     # -- arrowheads -------------------------------------------------------------------------------
     heads: list[str] = []
     unmatched: list[str] = []
@@ -218,10 +238,10 @@ def measure_layout(svg_text: str | bytes) -> LayoutReport:
     return LayoutReport(
         width=W, height=H, format=_format(W, H),
         overlapping_labels=n_overlaps, labels_crossing_lines=n_cross, labels_off_sheet=n_off,
-        long_heads=n_heads, beyond_a3=len(oversize), overlapping_vertex_letters=n_letters,
+        long_heads=n_heads, beyond_a3=len(oversize), overlapping_vertex_letters=n_letters, ink_off_area=n_outside,
         overlaps=tuple(overlaps), crossings=tuple(crossings), off_sheet=tuple(off), heads=tuple(heads),
         oversize=tuple(oversize), labels=len(texts), unmatched_heads=tuple(unmatched),
-        vertex_letters=tuple(letters))
+        vertex_letters=tuple(letters), outside=tuple(outside))
 
 
 def _vertex_letters(texts, vertices: dict[str, dict[str, list[tuple[float, float]]]]) -> tuple[int, list[str]]:

@@ -5,9 +5,9 @@ Reads a solved train; imports nothing of the pipeline."""
 
 from __future__ import annotations
 
-from ...constructions.gears import gear_sheet
+from ...constructions.gears import SIDE_MAX_MM, gear_sheet
 from ...drawing import Style
-from ...drawing.gears import draw_gears
+from ...drawing.gears import draw_gears, to_fit
 from ...drawing.svg import Heading
 from ...gears import GearAnalysis
 from ...scene import Scene
@@ -21,7 +21,7 @@ def gear_sheets(scene: Scene, train: GearAnalysis, stem: str, style: Style) -> d
         return {}
     s = train.speeds
     inputs = ", ".join(f"n_{{{name}}} = {float(n):g} rpm".replace("-", "−") for name, n in s.train.inputs)
-    sheet = gear_sheet(train)
+    sheet = to_fit(lambda side: gear_sheet(train, side_max=side), SIDE_MAX_MM)
     notes = [f"W = 3·{s.structure.n} − 2·{s.structure.p5} − {s.structure.p4} = {s.structure.mobility}; "
              f"given {inputs}"]
     if sheet.nominal:
