@@ -21,8 +21,11 @@ of P). Below the detail, the specific-sliding diagram: the line of action N1N2 s
 λ1 = 1 − ρ2/(u·ρ1), λ2 = 1 − u·ρ1/ρ2 (ρ1 = the distance from N1, ρ2 = from N2, u = z2/z1), at
 its own scale μλ (1/mm), its ordinates at B1 and B2 tagged (group ``sliding``).
 
-Cutting: the wheel's centre below, the cutter at φ = 0 (a tooth centred on the +y axis, in the
-space it cuts), its reference line x·m above the pitch line, which touches the reference circle.
+Cutting: the wheel's centre O1 below, the cutter at φ = 0 (a tooth centred on the +y axis, in
+the space it cuts), its reference line x·m above the pitch line, which touches the reference
+circle at P; the line of machine meshing through P at α to the pitch line, tangent to the base
+circle at N (O1N drawn); the circles d, d_b, d_a, d_f named; p, h and x·m drawn as dimension
+lines (arrows at both ends, their values written).
 """
 
 from __future__ import annotations
@@ -73,6 +76,7 @@ class PairSheet:
     k: float
     k0: float = 0.0
     mu_sliding: float = 0.0                 # μλ of the specific-sliding diagram, 1/mm (0: none)
+    dimensions: bool = False                # the tags drawn as dimension lines (arrows both ends, values)
     outlines: list[tuple[str, np.ndarray]] = field(default_factory=list)
     curves: list[tuple[str, str, np.ndarray]] = field(default_factory=list)
     tags: list[Tag] = field(default_factory=list)
@@ -345,5 +349,21 @@ def _cutting(a: PairAnalysis, k: float) -> PairSheet:
     ray = np.array([math.sin(0.5 * tau), math.cos(0.5 * tau)])
     sheet.tags.append(Tag("detail", "h", h, tuple(centre + ray * p.df[0] / 2 * k), tuple(centre + ray * p.da[0] / 2 * k),
                           ("root", "tip")))
-    sheet.points += [("P", (0.0, 0.0))]
+    # the line of machine meshing: through P at α to the pitch line, tangent to the base circle at N
+    u = np.array([math.cos(p.alpha), math.sin(p.alpha)])
+    n = -r * k * math.sin(p.alpha) * u
+    sheet.curves.append(("machine-meshing", "thin", np.array([n - 6.0 * u, u * (v_top * k / max(math.sin(p.alpha),
+                                                                                                 0.2) + 6.0)])))
+    sheet.curves.append(("O1-N", "thin", np.array([centre, n])))
+    radius = 0.55 * float(np.hypot(*n))
+    sheet.curves.append(("alpha", "thin", np.array([[-radius * math.cos(t), -radius * math.sin(t)]
+                                                     for t in np.linspace(0.0, p.alpha, 30)])))
+    mid_a = 0.5 * p.alpha
+    sheet.labels.append(("α", (-radius * math.cos(mid_a), -radius * math.sin(mid_a)), (-0.4, -1.0)))
+    # the circles named where their arcs end, left of the teeth
+    for name, d in (("d", p.d[0]), ("d_{b}", p.db[0]), ("d_{a}", p.da[0]), ("d_{f}", p.df[0])):
+        end = centre + np.array([math.sin(-2.6 * tau), math.cos(-2.6 * tau)]) * d / 2 * k
+        sheet.labels.append((name, tuple(end), (-1.0, 0.0)))
+    sheet.points += [("P", (0.0, 0.0)), ("N", tuple(n)), ("O_1", tuple(centre))]
+    sheet.dimensions = True
     return sheet

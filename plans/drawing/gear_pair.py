@@ -11,6 +11,8 @@ and ``data-pitch-point`` (P on the paper), which must lie on both working profil
 
 from __future__ import annotations
 
+import math
+
 from ..constructions.gear_pair import PairSheet
 from .canvas import fmt
 from .sheet import FORMATS, TitleBlock, new_sheet, note_lines
@@ -76,8 +78,15 @@ def draw_pair_sheet(s: PairSheet, heading: Heading, *, ident: str, style: Style 
             if group == "sliding":
                 continue                     # its curves are labelled λ1, λ2 (the ordinates at B1, B2 measured)
             mid = (0.5 * (t.a[0] + t.b[0]), 0.5 * (t.a[1] + t.b[1]))
-            canvas.label(g, mid, _NAMES.get(t.quantity, t.quantity), size=style.text, ident=f"{ident}-{t.quantity}-l",
-                         fill=style.component_colour)
+            text = _NAMES.get(t.quantity, t.quantity)
+            if s.dimensions:                 # a dimension line: arrows at both ends and its value
+                for end, other, side in ((t.b, t.a, "b"), (t.a, t.b, "a")):
+                    h = canvas.head(g, other, end, min(style.arrow_length, 0.3 * math.dist(t.a, t.b)),
+                                    fill=style.component_colour, stroke="none", id=f"{ident}-{t.quantity}-h{side}")
+                    h.attribs["class"] = "head"
+                    h.attribs["data-for"] = f"{ident}-{t.quantity}"
+                text = f"{text} = {t.value:.4g} mm"
+            canvas.label(g, mid, text, size=style.text, ident=f"{ident}-{t.quantity}-l", fill=style.component_colour)
         dwg.add(g)
     marks = dwg.add(dwg.g(id=f"{ident}-points", fill=style.colour, stroke="none"))
     for name, xy in s.points:

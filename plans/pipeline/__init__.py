@@ -129,7 +129,7 @@ def _render_train(scene: Scene, train: GearAnalysis | None, *, stem: str, style:
                   where: str | None = None) -> Rendered:
     """The files of gears alone: the train's sheet (when drawn) and report (with the candidates
     of ``[synthesis]``, the first drawn), and the involute pair's (``[gear_pair]``)."""
-    files = gear_sheets(scene, train, stem, style) if train is not None else {}
+    files = gear_sheets(scene, train, stem, style, found=found[0] if found else None) if train is not None else {}
     data: dict = {"title": scene.title}
     warnings = list(train.warnings) if train is not None else []
     if train is not None:
