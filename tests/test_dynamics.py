@@ -5,6 +5,7 @@ a direct integration of the energy equation, published turning-moment problems).
 
 from __future__ import annotations
 
+import json
 import math
 import re
 
@@ -399,3 +400,33 @@ def test_graphical_work_is_the_sum_of_middle_ordinates(name, tmp_path):
     expect = -chords if loads_resist else chords
     assert len(drawn) == n + 1
     assert np.max(np.abs(drawn - expect)) <= 1e-9 * np.max(np.abs(expect))
+
+
+@pytest.mark.parametrize("stem", ["six_link_press_flywheel", "compressor_flywheel", "shaper_flywheel"])
+def test_wittenbauer_read_off_the_sheet_gives_j_within_its_stated_error(demo_rendered, stem):
+    """kl measured on the drawn sheet × its μT (the sheet's own attributes) gives J_fw = kl·μT/(ω_m²·δ)
+    − I0 equal to the exact J within the graphical error the sheet states (kl read to ±0.5 mm) and
+    the method's own difference; and ΔT(φ) and Wittenbauer's diagram share μT, I_r(φ) and it μI
+    (the projection)."""
+    import xml.etree.ElementTree as ET
+    svg = ET.parse(demo_rendered / f"{stem}-dynamics.svg").getroot()
+    ns = "{http://www.w3.org/2000/svg}"
+    dyn = json.loads((demo_rendered / f"{stem}.json").read_text(encoding="utf-8"))["cycle"]["dynamics"]
+    fly, sheet = dyn["flywheel"], dyn["sheet"]
+    seg = next(l for l in svg.iter(f"{ns}line") if l.get("data-quantity") == "kl")
+    group = next(g for g in svg.iter(f"{ns}g") if g.get("id") == "dynamics-wittenbauer-kl")
+    kl = math.dist((float(seg.get("x1")), float(seg.get("y1"))), (float(seg.get("x2")), float(seg.get("y2"))))
+    mu_t = float(group.get("data-mu"))
+    w = next(g for g in svg.iter(f"{ns}g") if g.get("data-diagram") == "wittenbauer")
+    i0 = float(w.get("data-i0"))
+    j = kl * mu_t / (dyn["omega_mean"] ** 2 * fly["delta"]) - i0
+    drawn = 2 * math.sqrt(2) * 0.0005 * mu_t / (dyn["omega_mean"] ** 2 * fly["delta"])
+    assert abs(j - fly["inertia_wittenbauer"]) <= drawn * 1.001
+    stated = sheet["wittenbauer"]["reading_error"]
+    assert abs(j - fly["inertia_exact"]) <= stated + abs(fly["inertia_wittenbauer"] - fly["inertia_exact"]) + drawn
+    graphs = {g.get("data-diagram"): g for g in svg.iter(f"{ns}g") if g.get("data-diagram")}
+    assert float(graphs["T"].get("data-scale")) == float(w.get("data-mu-t"))
+    assert float(graphs["I"].get("data-scale")) == float(w.get("data-mu-i")) and graphs["I"].get("data-turned") == "90"
+    # the projection: the ΔT graph's zero level is Wittenbauer's
+    assert float(graphs["T"].get("data-origin").split(",")[1]) == pytest.approx(float(w.get("data-origin").split(",")[1]),
+                                                                               abs=1e-3)

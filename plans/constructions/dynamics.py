@@ -10,9 +10,14 @@
   the loads' work. Exact curves (solid) beside the chords (dashed).
 - ΔT(φ) = A_d − A_r (J), exactly and as the difference of the graphical works.
 - I_r(φ): the reduced moment of inertia with the rotor's (kg·m²).
-- Wittenbauer: ΔT against I_r; the tangents at ψ_max, ψ_min with tan ψ = ω_m²(1 ± δ)/2 (in the
-  drawing's scales: × μI/μT) cut the segment kl on the ΔT axis (at I = I0, the axis's first
-  value), kl·μT = ω_m²·δ·(J + I0), so J = kl·μT/(ω_m²·δ) − I0.
+- Wittenbauer: ΔT against I_r, built by projection as the textbook builds it: ΔT(φ) and
+  Wittenbauer's diagram share μT and their ΔT = 0 level, so each position's ΔT is carried across
+  by a horizontal line; I_r(φ) is drawn turned through 90° under Wittenbauer's diagram at its
+  μI (I along x from the same I0, φ downwards at a μφ of its own), so each position's I_r is
+  carried up by a vertical line; the curve's points are where the two lines meet. The tangents
+  at ψ_max, ψ_min with tan ψ = ω_m²(1 ± δ)/2 (in the drawing's scales: × μI/μT) cut the segment
+  kl on the ΔT axis (at I = I0, the axis's first value), kl·μT = ω_m²·δ·(J + I0), so
+  J = kl·μT/(ω_m²·δ) − I0.
 
 Every graph's ordinates at the positions are measured segments (length × μ = value); so is kl.
 """
@@ -33,9 +38,13 @@ __all__ = ["DynamicsDiagrams", "Wittenbauer", "Tangent", "dynamics_diagrams", "S
 
 #: Largest length of the φ axis (one revolution), mm.
 PHI_MM = 190.0
-#: Largest height of one graph, and the space between two, mm.
-GRAPH_MM = 40.0
+#: Largest height of one graph, and the space between two, mm (ΔT(φ), which Wittenbauer's
+#: diagram shares, is taller: :data:`ENERGY_MM`).
+GRAPH_MM = 30.0
 GAP_MM = 15.0
+ENERGY_MM = 60.0
+#: Largest length of the turned I_r(φ) diagram's φ axis (one revolution), mm.
+TURNED_MM = 55.0
 #: Largest width and height of Wittenbauer's diagram, mm.
 WITTENBAUER_MM = (120.0, 195.0)
 #: Samples of the exact curves per revolution (besides the positions and each side of every kink).
@@ -97,6 +106,7 @@ class DynamicsDiagrams:
     graphs: tuple[Graph, ...]
     works: tuple[str, str]
     wittenbauer: Wittenbauer
+    mu_phi_turned: float = 0.0
 
 
 def dynamics_diagrams(machine: MachineDynamics) -> DynamicsDiagrams:
@@ -126,7 +136,9 @@ def dynamics_diagrams(machine: MachineDynamics) -> DynamicsDiagrams:
     else:
         work, work_g, other, sym = -loads, -loads_g, line, ("A_r", "A_d")
         t_g = line_g + loads_g
-    m = _graph("M", "M_r", "N·m", top=0.0, x=x, values=moment, at=at, height=GRAPH_MM)
+    # M_r with the constant moment's line (M_d driving a working machine, the consumer's in an engine)
+    m = _graph("M", "M_r", "N·m", top=0.0, x=x, values=moment, at=at, height=GRAPH_MM,
+               extra=np.full_like(moment, machine.constant), extra_symbol="M_c" if machine.constant < 0.0 else "M_d")
     top = m.origin[1] + m.low - GAP_MM
     lo_ = min(0.0, float(np.min(work)), float(np.min(work_g)), float(np.min(other)))
     hi_ = max(0.0, float(np.max(work)), float(np.max(work_g)), float(np.max(other)))
@@ -134,12 +146,14 @@ def dynamics_diagrams(machine: MachineDynamics) -> DynamicsDiagrams:
     a = _graph("A", "A", "J", top=top, x=x, values=work, at=at, graphical=(at, work_g), extra=other,
                extra_symbol=sym[1], mu=m.mu * mu_phi * pole)
     top = a.origin[1] + a.low - GAP_MM
-    t = _graph("T", "ΔT", "J", top=top, x=x, values=energy, at=at, graphical=(at, t_g), height=GRAPH_MM)
+    t = _graph("T", "ΔT", "J", top=top, x=x, values=energy, at=at, graphical=(at, t_g), height=ENERGY_MM)
+    witt = _wittenbauer(machine, inertia, energy, at[:-1], mu_t=t.mu)
+    # I_r(φ) at Wittenbauer's μI, drawn turned under it (its φ at a scale of its own)
     top = t.origin[1] + t.low - GAP_MM
-    i = _graph("I", "I_r", "kg·m²", top=top, x=x, values=inertia, at=at, height=GRAPH_MM)
-    witt = _wittenbauer(machine, inertia, energy, at[:-1])
+    i = _graph("I", "I_r", "kg·m²", top=top, x=x, values=inertia, at=at, mu=witt.mu_i)
     return DynamicsDiagrams(mu_phi=mu_phi, length=length, positions=n, pole=pole, loads_drive=loads_drive,
-                            graphs=(m, a, t, i), works=sym, wittenbauer=witt)
+                            graphs=(m, a, t, i), works=sym, wittenbauer=witt,
+                            mu_phi_turned=fitting_scale(two_pi, TURNED_MM))
 
 
 def _graph(quantity: str, symbol: str, unit: str, *, top: float, x: np.ndarray, values: np.ndarray,
@@ -162,7 +176,9 @@ def _graph(quantity: str, symbol: str, unit: str, *, top: float, x: np.ndarray, 
                  extra_symbol)
 
 
-def _wittenbauer(machine: MachineDynamics, inertia: np.ndarray, energy: np.ndarray, at: np.ndarray) -> Wittenbauer:
+def _wittenbauer(machine: MachineDynamics, inertia: np.ndarray, energy: np.ndarray, at: np.ndarray, *,
+                 mu_t: float) -> Wittenbauer:
+    """The diagram at ``mu_t`` (J/mm, the ΔT(φ) graph's, so that ΔT is projected across)."""
     i_lo, i_hi = float(np.min(inertia)), float(np.max(inertia))
     spread = i_hi - i_lo
     if not spread > 1e-9 * abs(i_hi):   # I_r constant (no masses: 0, or the rotor's): the I axis spans the
@@ -189,7 +205,6 @@ def _wittenbauer(machine: MachineDynamics, inertia: np.ndarray, energy: np.ndarr
         values += list(ends)
         raw.append((which, k, it, et, x_end, ends))
     lo, hi = min(values), max(values)
-    mu_t = fitting_scale(hi - lo if hi > lo else 1.0, WITTENBAUER_MM[1])
     tangents = tuple(Tangent(which, math.degrees(math.atan(k * mu_i / mu_t)), k, (x_of(it), et / mu_t),
                              (0.0, ends[0] / mu_t), (x_end, ends[1] / mu_t), ends[0])
                      for which, k, it, et, x_end, ends in raw)

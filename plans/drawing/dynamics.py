@@ -1,6 +1,11 @@
-"""The dynamics sheets. The steady cycle: M_r, the works A_r and A_d, ΔT and I_r against the crank's angle φ (the
+"""The dynamics sheets. The steady cycle: M_r, the works A_r and A_d and ΔT against the crank's angle φ (the
 graphs of :mod:`.diagrams`, against φ instead of t), and Wittenbauer's energy–mass diagram to
-their right with its two tangents and the segment kl they cut on the ΔT axis.
+their right, built by projection: its ΔT = 0 level is ΔT(φ)'s and its μT the same, so each
+position's ΔT is carried across by a thin dashed line; under it I_r(φ) turned through 90° (I
+along x at Wittenbauer's μI from the same I0 — its axis is Wittenbauer's I scale — φ downwards),
+each position's I_r carried up by a thin dashed line; with its two tangents and the segment kl
+they cut on the ΔT axis. The turned I_r(φ) is a ``<g data-diagram="I" data-turned="90">`` whose
+ordinates (from its φ axis to the curve, horizontal) are measured like the other graphs'.
 
 Wittenbauer's ``<g>`` states ``data-mu-i`` (kg·m²/mm), ``data-mu-t`` (J/mm), ``data-i0`` and
 ``data-origin`` (paper x, y of I = I0, ΔT = 0); kl is a measured segment (``data-plan="bound"``,
@@ -9,6 +14,8 @@ The start-up: ω(t) and the moments against time, as the kinematic diagrams are 
 """
 
 from __future__ import annotations
+
+import math
 
 from ..constructions.diagrams import Graph
 from ..constructions.dynamics import DynamicsDiagrams, StartupDiagrams, Wittenbauer
@@ -39,19 +46,25 @@ def draw_dynamics(d: DynamicsDiagrams, heading: Heading, *, ident: str, style: S
                   notes: tuple[str, ...] = (), scales: str = "") -> str:
     """SVG text of the dynamics sheet (see the module), ``scales`` for the title block."""
     w = d.wittenbauer
+    m, a, t, i = d.graphs
     note_rows = _note_rows(notes, style)
     wx = d.length + RIGHT_MM + BETWEEN_MM            # Wittenbauer's ΔT axis
-    wy = -w.high                                     # its top level with the graphs' top
-    last = d.graphs[-1]
-    bottom = min(last.origin[1] + last.low, wy + w.low) - BELOW_MM - NOTE_LINE_MM * note_rows
-    box = (-LEFT_MM, bottom, wx + w.width + RIGHT_MM, 10.0)
+    wy = t.origin[1]                                 # its ΔT = 0 level: ΔT(φ)'s, projected across
+    ys = wy + w.low - 9.0                            # its I scale: the turned I_r(φ)'s I axis
+    phi_end = 2.0 * math.pi / d.mu_phi_turned
+    bottom = min(t.origin[1] + t.low, ys - phi_end - 8.0) - BELOW_MM - NOTE_LINE_MM * note_rows
+    top = max(m.origin[1] + m.high, wy + w.high) + 10.0
+    box = (-LEFT_MM, bottom, wx + w.width + RIGHT_MM, top)
     dwg, canvas = new_sheet(FORMATS[2], box, ident=ident, style=style,
                             block=TitleBlock(heading.mechanism, heading.sheet, heading.position, scales))
-    for g in d.graphs:
+    for g in (m, a, t):
         draw_graph(dwg, canvas, g, f"{ident}-{g.quantity}", style, mu_x=d.mu_phi, length=d.length, abscissa="φ")
-        if g.extra:           # the works
-            _name_curves(dwg, canvas, g, d.works, f"{ident}-{g.quantity}", style)
+        if g.extra:           # the works; M_r and the constant moment
+            names = d.works if g.quantity == "A" else (g.symbol, g.extra_symbol)
+            _name_curves(dwg, canvas, g, names, f"{ident}-{g.quantity}", style)
     _wittenbauer(dwg, canvas, w, (wx, wy), f"{ident}-wittenbauer", style)
+    _turned_inertia(dwg, canvas, d, (wx, ys), f"{ident}-I", style)
+    _projections(dwg, canvas, d, (wx, wy), (wx, ys), f"{ident}-projection", style)
     if notes:
         note_lines(canvas, dwg.add(dwg.g(id=f"{ident}-notes")), notes, style)
     canvas.place_labels(dwg.add(dwg.g(id=f"{ident}-leaders")))
@@ -112,10 +125,10 @@ def _wittenbauer(dwg, canvas: Canvas, w: Wittenbauer, at: tuple[float, float], i
     canvas.line(grp, p(0.0, ys), p(x_end, ys), width=style.vector, stroke_width=vec, id=f"{ident}-iscale")
     arrow(canvas, grp, p(0.0, ys), p(x_end, ys), style.colour, f"{ident}-iscale-head", style, of=f"{ident}-iscale")
     for k, (value, x) in enumerate(w.i_ticks):
-        canvas.line(grp, p(x, ys), p(x, ys + 1.5), width=style.thin, stroke_width=thin, id=f"{ident}-it{k}")
+        canvas.line(grp, p(x, ys), p(x, ys - 1.5), width=style.thin, stroke_width=thin, id=f"{ident}-it{k}")
         num = _number(value)
-        canvas.text(texts, canvas.paper(p(x - width_of(num, style.small_text) / 2, ys - 4.5)), num,
-                    size=style.small_text, ident=f"{ident}-itn{k}")
+        canvas.text(texts, canvas.paper(p(x - width_of(num, style.small_text) / 2, ys + 1.6)), num,
+                    size=style.small_text, ident=f"{ident}-itn{k}")      # above: the turned I_r(φ) hangs below
     canvas.text(texts, canvas.paper(p(x_end + 1.5, ys - 1.2)), "I_r, kg·m²", size=style.text,
                 ident=f"{ident}-iscale-name")
     # the energy–mass curve and the positions on it
@@ -153,6 +166,82 @@ def _wittenbauer(dwg, canvas: Canvas, w: Wittenbauer, at: tuple[float, float], i
     grp.add(texts)
     dwg.add(grp)
     dwg.add(labels)
+
+
+def _turned_inertia(dwg, canvas: Canvas, d: DynamicsDiagrams, at: tuple[float, float], ident: str,
+                    style: Style) -> None:
+    """I_r(φ) turned through 90° under Wittenbauer's diagram: its φ axis down from ``at`` (I = I0,
+    φ = 0), I along x at Wittenbauer's μI; each position's ordinate (horizontal, φ axis → curve)
+    measured, its number beside the φ axis."""
+    g, w = d.graphs[3], d.wittenbauer
+    ox, oy = at
+    mu, mu_phi = w.mu_i, d.mu_phi_turned
+    thin, vec = fmt(style.thin, 3), fmt(style.vector, 3)
+
+    def p(inertia: float, phi: float) -> tuple[float, float]:
+        return ox + (inertia - w.i0) / mu, oy - phi / mu_phi
+
+    grp = dwg.g(id=ident, stroke=style.colour, fill="none", stroke_linecap="round")
+    grp.attribs["data-diagram"] = g.quantity
+    grp.attribs["data-turned"] = "90"
+    grp.attribs["data-scale"] = repr(mu)
+    grp.attribs["data-mu-phi"] = repr(mu_phi)
+    px, py = canvas.paper(at)
+    grp.attribs["data-origin"] = f"{fmt(px, style.decimals)},{fmt(py, style.decimals)}"
+    texts = dwg.g(id=f"{ident}-text", fill=style.colour)
+    ords = dwg.g(id=f"{ident}-ordinates", stroke=style.construction_colour, stroke_width=thin)
+    ords.attribs["data-mu"] = repr(mu)
+    ords.attribs["data-plan"] = "bound"
+    ords.attribs["data-vectors"] = str(len(g.at_positions))
+    name = "I" if w.i0 == 0.0 else "I-I0"
+    for k, (x, _, value) in enumerate(g.at_positions):
+        phi = x * d.mu_phi
+        a, b = p(w.i0, phi), p(value, phi)
+        el = canvas.line(ords, a, b, width=style.thin, ink=abs(b[0] - a[0]) > 0.3, id=f"{ident}-ord{k}")
+        _tag(el, canvas, f"{name}@{k}", abs(value - w.i0), a, b if b != a else (a[0] + 1.0, a[1]), f"phi{k}",
+             f"{g.quantity}{k}")
+        canvas.text(texts, canvas.paper((ox - 2.0 - width_of(str(k), style.small_text), a[1] - 0.9)), str(k),
+                    size=style.small_text, ident=f"{ident}-pn{k}")
+    grp.add(ords)
+    end = (ox, oy - 2.0 * math.pi / mu_phi - 6.0)
+    canvas.line(grp, (ox, oy), end, width=style.vector, stroke_width=vec, id=f"{ident}-phiaxis")
+    arrow(canvas, grp, (ox, oy), end, style.colour, f"{ident}-phihead", style, of=f"{ident}-phiaxis")
+    canvas.text(texts, canvas.paper((ox + 1.5, end[1] + 1.0)), "φ", size=style.text, italic=True,
+                ident=f"{ident}-phiname")
+    curve = canvas.polyline(grp, [p(w.i0 + (y - g.origin[1]) * mu, (x - g.origin[0]) * d.mu_phi) for x, y in g.exact],
+                            width=style.vector, stroke_width=vec, id=f"{ident}-exact", stroke=style.vector_colour)
+    curve.attribs["data-kind"] = "exact"
+    dots = dwg.g(id=f"{ident}-dots", fill=style.vector_colour, stroke="none")
+    for k, (x, _, value) in enumerate(g.at_positions):
+        el = canvas.circle(dots, p(value, x * d.mu_phi), 0.55, filled=True, id=f"{ident}-e{k}")
+        el.attribs["data-kind"] = "exact"
+        el.attribs["data-value"] = repr(value)
+        el.attribs["data-phi"] = repr(x * d.mu_phi)
+    grp.add(dots)
+    grp.add(texts)
+    dwg.add(grp)
+
+
+def _projections(dwg, canvas: Canvas, d: DynamicsDiagrams, witt: tuple[float, float], turned: tuple[float, float],
+                 ident: str, style: Style) -> None:
+    """The construction of Wittenbauer's curve: from each position's ΔT on ΔT(φ) across, and from
+    its I_r on the turned I_r(φ) up, to the point of the curve where the two meet."""
+    t, w = d.graphs[2], d.wittenbauer
+    g = dwg.add(dwg.g(id=ident, stroke=style.construction_colour, stroke_width=fmt(style.thin, 3), fill="none",
+                      stroke_dasharray="1.2 1.2"))
+    # each line broken where the axes' numbers are: past the φ axis's end and before Wittenbauer's
+    # ΔT numbers; between the I scale's numbers and its line
+    stop, resume = d.length + 7.0, witt[0] - 1.5
+    for k, ((x, y, _), (xi, _, inertia)) in enumerate(zip(t.at_positions[:-1], d.graphs[3].at_positions[:-1])):
+        wxk, wyk, _, _ = w.at_positions[k]
+        point = (witt[0] + wxk, witt[1] + wyk)
+        if stop > x:
+            canvas.line(g, (x, y), (stop, y), width=style.thin, id=f"{ident}-t{k}")
+        canvas.line(g, (resume, y), point, width=style.thin, id=f"{ident}-t{k}b")
+        below = (turned[0] + (inertia - w.i0) / w.mu_i, turned[1] - xi * d.mu_phi / d.mu_phi_turned)
+        if below[1] < turned[1]:
+            canvas.line(g, below, (below[0], turned[1]), width=style.thin, id=f"{ident}-i{k}")
+        canvas.line(g, (below[0], turned[1] + 5.5), point, width=style.thin, id=f"{ident}-i{k}b")
 
 
 def draw_startup(d: StartupDiagrams, heading: Heading, *, ident: str, style: Style = Style(),

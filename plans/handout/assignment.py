@@ -250,7 +250,7 @@ _AREAS = {"velocity": ("velocity", "Velocity plan (pole p)", "μ_V = ________ (m
           "forces": ("force", "Groups drawn alone (μ_l, arms h, ΣM = 0) and force plans", "μ_F = ________ N/mm"),
           "lever": ("lever", "Zhukovsky's lever", "μ_F = ________ N/mm")}
 #: The dynamics diagrams drawn one above the other on a common φ axis (``data-diagram``).
-_DIAGRAMS = ("M", "A", "T", "I")
+_DIAGRAMS = ("M", "A", "T")
 
 
 def answer_areas(h: Handout, d: Drawn) -> list:
@@ -271,12 +271,10 @@ def answer_areas(h: Handout, d: Drawn) -> list:
         return [b for n in found for w, b in drawings(sheets[n].svg) if w in what]
 
     if h.kind == "dynamics":
-        boxes = held("dynamics", _DIAGRAMS)        # one above the other: the room of all of them
-        union = ((max(b.x1 for b in boxes) - min(b.x0 for b in boxes),
-                  max(b.y1 for b in boxes) - min(b.y0 for b in boxes)),) if boxes else ()
-        return [Area("diagrams", "Diagrams M_{r}(φ), A(φ), ΔT(φ), I_{r}(φ)", "μ_φ = ________ rad/mm", union),
-                Area("wittenbauer", "Wittenbauer's diagram ΔT(I_{r})", "μ_T = ________ J/mm",
-                     tuple(_sizes(held("dynamics", ("wittenbauer",)))))]
+        union = _union(held("dynamics", _DIAGRAMS))        # one above the other: the room of all of them
+        return [Area("diagrams", "Diagrams M_{r}(φ), A(φ), ΔT(φ)", "μ_φ = ________ rad/mm", union),
+                Area("wittenbauer", "Wittenbauer's diagram ΔT(I_{r}) by projection, I_{r}(φ) turned under it",
+                     "μ_T = ________ J/mm", _union(held("dynamics", ("wittenbauer", "I"))))]
     drive = d.scene.drive
     if h.kind == "forces":
         kinds, positions = ("velocity", "acceleration", "forces", "lever"), range(1)
@@ -296,6 +294,12 @@ def answer_areas(h: Handout, d: Drawn) -> list:
             out.append(Area(kind, name + at, scale, tuple(_sizes(held(kind + suffix, kinds_drawn, kind == "forces"))),
                             suffix))
     return out
+
+
+def _union(boxes: list) -> tuple[tuple[float, float], ...]:
+    """The size of the box holding all ``boxes`` (none when there are none), mm."""
+    return ((max(b.x1 for b in boxes) - min(b.x0 for b in boxes), max(b.y1 for b in boxes) - min(b.y0 for b in boxes)),) \
+        if boxes else ()
 
 
 def _sizes(boxes: list) -> list[tuple[float, float]]:

@@ -85,6 +85,7 @@ def dynamics_sheets(scene: Scene, machine: MachineDynamics, forces: Forces | Non
                          "graphical_error": {g.quantity: g.error for g in d.graphs if g.graphical},
                          "wittenbauer": {"mu_i": w.mu_i, "mu_t": w.mu_t, "i0": w.i0, "segment": w.segment,
                                          "inertia": w.inertia,
+                                         "reading_error": None if w.segment is None else _reading(machine, d),
                                          "psi": {t.which: t.psi for t in w.tangents}}}
     if started is not None:
         data["startup"] = _startup_data(machine, started)
@@ -139,12 +140,22 @@ def _startup_sheet(scene: Scene, machine: MachineDynamics, st: Startup, style: S
                         notes=tuple(notes), scales=scales)
 
 
+#: How closely a drawn segment is read off the sheet with a ruler, mm: the graphical error the
+#: dynamics sheet states for J from Wittenbauer's kl.
+READ_MM = 0.5
+
+
+def _reading(machine: MachineDynamics, d: DynamicsDiagrams) -> float:
+    """The error of J_fw (kg·m²) from kl read to ±READ_MM: μT·READ_MM/(ω_m²·δ)."""
+    return d.wittenbauer.mu_t * READ_MM / (machine.omega_m ** 2 * machine.flywheel.delta)
+
+
 def _scales(d: DynamicsDiagrams) -> str:
     m, a, t, i = d.graphs
     w = d.wittenbauer
     return (f"μ_φ = {d.mu_phi:g} rad/mm; μ_M = {m.mu:g} N·m/mm; μ_A = {a.mu:.4g} J/mm (H = {d.pole:g} mm); "
-            f"μ_ΔT = {t.mu:g} J/mm; μ_I = {i.mu:g} kg·m²/mm; Wittenbauer: μ_I = {w.mu_i:g} kg·m²/mm, "
-            f"μ_T = {w.mu_t:g} J/mm")
+            f"μ_ΔT = {t.mu:g} J/mm and μ_I = {i.mu:g} kg·m²/mm, Wittenbauer's too (by projection; I_r(φ) turned, "
+            f"μ_φ = {d.mu_phi_turned:g} rad/mm)")
 
 
 def _notes(machine: MachineDynamics, d: DynamicsDiagrams) -> tuple[str, ...]:
@@ -169,7 +180,8 @@ def _notes(machine: MachineDynamics, d: DynamicsDiagrams) -> tuple[str, ...]:
                    f"{abs(w.segment) / w.mu_t:.2f} mm on the ΔT axis (at I_r = {w.i0:g} kg·m²): "
                    f"J_fw = kl·μ_T/(ω_m²·δ) − {w.i0:g} = {w.inertia:.5g} kg·m². Exactly (ω_max, ω_min = "
                    f"ω_m(1 ± δ/2)): J_fw = {wheel.inertia_exact:.6g} kg·m²; Wittenbauer's differs by "
-                   f"{100 * diff:.2g} % (its tangents take ω²/2 to first order in δ).")
+                   f"{100 * diff:.2g} % (its tangents take ω²/2 to first order in δ). Read to ±{READ_MM:g} mm, kl "
+                   f"gives J_fw within ±{_reading(machine, d):.2g} kg·m² ({100 * _reading(machine, d) / w.inertia:.2g} %).")
         if wheel.required is not None and wheel.required < 0.0:
             out.append("No flywheel is needed: the machine's own inertia keeps δ.")
     else:
