@@ -205,7 +205,8 @@ def test_json_contract():
     with record_stages() as stages:
         sheets = plans.render(scene, stem="c4")
     assert "assemblies" in stages
-    assert not any("assemblies" in name for name in sheets.files)     # no sheet yet
+    assert sorted(n for n in sheets.files if "-assemblies" in n) == sorted(f"c4-assemblies{s}.svg" for s in
+                                                                           ("-0", "-90", "-180", "-270"))
     data = json.loads(sheets.files["c4.json"])
     names = [g["name"] for g in data["structure"]["groups"]]
     motion = sheets.motion
@@ -219,7 +220,8 @@ def test_json_contract():
             assert sum(p["chosen"] is True for p in entry["poses"]) == 1
             want = {p for n in g.links for p in motion.mechanism.links[n].points}
             for p in entry["poses"]:
-                assert set(p) == {"points", "chosen"} and isinstance(p["chosen"], bool)
+                # "condition": a class III group's figure at that pose (none for a class IV group)
+                assert set(p) - {"condition"} == {"points", "chosen"} and isinstance(p["chosen"], bool)
                 assert set(p["points"]) == want
                 assert all(isinstance(c, float) and len(xy) == 2 for xy in p["points"].values() for c in xy)
                 if p["chosen"]:      # metres: the report's own points

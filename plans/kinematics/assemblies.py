@@ -27,6 +27,7 @@ from ..errors import SceneError
 from ..structure import ComplexGroup, Group, Pair
 from .generic import GroupEquations
 from .groups import candidates
+from .special import condition
 from .state import LinkState
 from .tolerances import ASSEMBLY_RTOL
 from .. import linalg as la
@@ -48,11 +49,14 @@ POLISH_RTOL = 1e-12
 @dataclass(frozen=True)
 class Assembly:
     """One real assembly of a group: world ``points`` of the group's links (m) and the links'
-    ``poses`` (x_o, y_o in m, θ in rad); ``chosen`` when it is the motion's own pose."""
+    ``poses`` (x_o, y_o in m, θ in rad); ``chosen`` when it is the motion's own pose;
+    ``condition`` the class III group's condition figure at that pose (±1 well spread, 0 at a
+    singular position; :func:`plans.kinematics.special.condition`), None for other groups."""
 
     points: Mapping[str, tuple[float, float]]
     poses: Mapping[str, tuple[float, float, float]]
     chosen: bool
+    condition: float | None = None      # a class III group's condition figure there (special.condition)
 
 
 @dataclass(frozen=True)
@@ -70,7 +74,8 @@ class GroupAssemblies:
         """The JSON report's entry: ``{"count": n, "poses": [{"points": {P: [x, y]}, "chosen": b}]}`` (m)."""
         return {"count": self.count,
                 "poses": [{"points": {p: [float(x), float(y)] for p, (x, y) in a.points.items()},
-                           "chosen": a.chosen} for a in self.assemblies]}
+                           "chosen": a.chosen, **({} if a.condition is None else {"condition": a.condition})}
+                          for a in self.assemblies]}
 
 
 def assemblies(motion, i: int) -> dict[str, GroupAssemblies]:
@@ -115,10 +120,18 @@ def group_assemblies(motion, g: Group | ComplexGroup, i: int) -> GroupAssemblies
         kept.append(own)
         chosen = len(found) - 1
     out = [Assembly(pts, {n: (float(s.origin[0, 0]), float(s.origin[0, 1]), float(s.theta[0]))
-                          for n, s in pose.items()}, k == chosen)
+                          for n, s in pose.items()}, k == chosen, _condition(mech, g, known, pose))
            for k, (pts, pose) in enumerate(zip(found, kept))]
     out.sort(key=lambda a: tuple(c for p in sorted(a.points) for c in a.points[p]))     # order by geometry
     return GroupAssemblies(g.name, tuple(out))
+
+
+def _condition(mech, g, known: Mapping[str, LinkState], pose: Mapping[str, LinkState]) -> float | None:
+    """A class III group's condition figure at ``pose`` (the other links at ``known``); None for
+    other groups."""
+    if not isinstance(g, ComplexGroup) or g.base is None:
+        return None
+    return float(condition(g, mech, {**known, **pose})[0])
 
 
 def _points(mech, pose: Mapping[str, LinkState]) -> dict[str, tuple[float, float]]:

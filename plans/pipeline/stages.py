@@ -98,8 +98,8 @@ def output_travel(scene: Scene, cycle: Cycle | None) -> Travel | None:
 def assembly_analysis(scene: Scene, motion: Motion) -> list[dict[str, GroupAssemblies]] | None:
     """Every group's real assemblies at every analysed position (position → group name →
     :class:`~plans.kinematics.assemblies.GroupAssemblies`) when the scene asks for them
-    (``draw = [..., "assemblies"]``); None otherwise (then nothing is computed). The
-    ``-assemblies`` sheet is to come: for now they go into the JSON report only."""
+    (``draw = [..., "assemblies"]``); None otherwise (then nothing is computed). They go into
+    the JSON report and the ``-assemblies`` sheets (:mod:`.sheets.assemblies`)."""
     if "assemblies" not in scene.draw:
         return None
     _ran("assemblies")

@@ -1,0 +1,62 @@
+"""The ``-assemblies`` sheet (issue 36): every real assembly of each class III/IV group at a
+drawn position, numbered in the JSON's order, the chosen one framed, drawn at one μl — each
+small scheme's points are the JSON's poses at that scale; ``plans check`` reads it as a scheme
+and the layout measurer finds nothing."""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pytest
+
+import plans
+from plans.checking import inspect_svg
+from plans.layout import measure_layout
+from plans.pipeline import render
+
+SVG = "{http://www.w3.org/2000/svg}"
+EXAMPLES = plans.__path__[0] + "/examples"
+
+
+def _rendered(name: str, folder):
+    from pathlib import Path
+    text = Path(f"{EXAMPLES}/{name}.toml").read_text(encoding="utf-8")
+    text = re.sub(r'^draw = \[', 'draw = ["assemblies", ', text, count=1, flags=re.M)
+    path = folder / f"{name}.toml"
+    path.write_text(text, encoding="utf-8")
+    return render(path)
+
+
+@pytest.mark.parametrize("name", ["class3_six_link", "class4_six_link"])
+def test_the_sheet_draws_every_assembly_at_its_poses(name, tmp_path):
+    sheets = _rendered(name, tmp_path)
+    report = json.loads(sheets.files[f"{name}.json"])
+    drawn = sorted(f for f in sheets.files if "-assemblies" in f)
+    assert len(drawn) == len(report["positions"])
+    for f, pos in zip(sorted(drawn, key=lambda f: float(f.rsplit("-", 1)[1][:-4])),
+                      sorted(report["positions"], key=lambda p: p["angle"])):
+        root = ET.fromstring(sheets.files[f])
+        schemes = [g for g in root.iter(f"{SVG}g") if g.get("data-assembly") is not None]
+        (group, found), = pos["assemblies"].items()
+        assert len(schemes) == found["count"]
+        for g, pose in zip(schemes, found["poses"]):
+            assert (g.get("data-chosen") == "true") == pose["chosen"]
+            mu = float(g.get("data-mu"))
+            # the joints (circles) in the order of the pose's points, at mu: their shape is the pose's
+            circles = [(float(c.get("cx")), float(c.get("cy"))) for c in g.iter(f"{SVG}circle")]
+            world = np.array(list(pose["points"].values()))
+            paper = np.array(circles)
+            d_world = np.hypot(*(world[:, None, :] - world[None, :, :]).transpose(2, 0, 1))
+            d_paper = np.hypot(*(paper[:, None, :] - paper[None, :, :]).transpose(2, 0, 1))
+            assert np.allclose(d_paper * mu, d_world, atol=2 * math.sqrt(2) * 0.0005 * mu)
+            if pose.get("condition") is not None:
+                assert f"condition {pose['condition']:+.3f}" in "".join(g.itertext())
+        path = tmp_path / f
+        path.write_text(sheets.files[f], encoding="utf-8")
+        r = inspect_svg(path)
+        assert r.kind == "scheme" and not r.problems
+        assert measure_layout(sheets.files[f]).clean
