@@ -25,7 +25,7 @@ Reads a solved train (plans.gears); nothing here draws.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from ..gears import GearAnalysis
 from .scales import standard_scale
@@ -63,12 +63,15 @@ class WheelMark:
     internal: bool
     fixed: bool
     mirror: bool
+    sleeve: float = 0.0         # on a hollow shaft of this radius (mm): drawn from it outwards
 
 
 @dataclass(frozen=True)
 class ShaftMark:
     """A link's shaft from ``x0`` to ``x1`` at height ``y`` (mm); ``frame`` when its axis is fixed
-    in the frame (drawn with a bearing), ``fixed`` when the link is held still."""
+    in the frame (drawn with a bearing), ``fixed`` when the link is held still; ``sleeve`` > 0: a
+    hollow shaft of that radius round the central axis's solid shaft (drawn as two lines at
+    ±sleeve, its bearing on it), leaving on the side opposite the solid shaft."""
 
     link: str
     x0: float
@@ -77,6 +80,7 @@ class ShaftMark:
     frame: bool
     fixed: bool
     mirror: bool
+    sleeve: float = 0.0         # a hollow shaft of this radius round the central one (mm); 0: solid
 
 
 @dataclass(frozen=True)
@@ -279,6 +283,7 @@ def gear_sheet(analysis: GearAnalysis, *, side_max: float = SIDE_MAX_MM) -> Gear
                    if link_of[w.name].name not in copies)
     x_max = max(x_of.values())
     shafts, carriers = [], []
+    bare: dict[str, tuple[float, float]] = {}           # each shaft's span over its own wheels and arm
     for link in drawn:
         xs = [x_of[n] for n in link.members if n in x_of]
         if link.carrier:
@@ -288,16 +293,21 @@ def gear_sheet(analysis: GearAnalysis, *, side_max: float = SIDE_MAX_MM) -> Gear
         if not xs:
             continue
         lo, hi = min(xs), max(xs)
+        bare[link.name] = (lo, hi)
         on_frame = link.axis_on is None
         if on_frame:                                   # room for the bearing outside the wheels
             lo, hi = (lo - PLANE_MM * 0.6, hi) if lo <= 0.5 * x_max else (lo, hi + PLANE_MM * 0.6)
         shafts.append(ShaftMark(link=link.name, x0=lo, x1=hi, y=height[link.name] * mm, frame=on_frame,
                                 fixed=link.fixed, mirror=not on_frame))
+    shafts = _coaxial(shafts, bare, [w for w in train.wheels if w.internal], link_of, train)
+    sleeve = {sh.link: sh.sleeve for sh in shafts}
+    wheels = tuple(replace(w, sleeve=sleeve.get(w.link, 0.0)) if w.y == 0.0 and not w.internal else w for w in wheels)
     for c in train.carriers:
         planets = [x_of[n] for p in s.planets_of(c) for n in p.members]
         arm = _arms(analysis, radius)[c] * mm
         x_arm = min(planets) - PLANE_MM / 2
-        carriers.append(CarrierMark(name=c, path=((x_arm, 0.0), (x_arm, arm), (max(planets) + PLANE_MM / 2, arm))))
+        hub = sleeve.get(link_of[c].name, 0.0)           # the carrier's arm starts on its own (hollow) shaft
+        carriers.append(CarrierMark(name=c, path=((x_arm, hub), (x_arm, arm), (max(planets) + PLANE_MM / 2, arm))))
     axis_x = x_max + PLANE_MM + GAP_MM + VELOCITY_MAX_MM * 0.5
     lines = []
     for link in drawn:
@@ -326,6 +336,36 @@ def gear_sheet(analysis: GearAnalysis, *, side_max: float = SIDE_MAX_MM) -> Gear
                      table=tuple(SpeedRow(n, train.wheel(n).teeth if n not in train.carriers else None,
                                                            float(speeds.rpm[n]), speeds.omega(n)) for n in train.names),
                      notes=_passive_notes(analysis))
+
+
+#: Radius step of the hollow shafts round the central solid shaft, mm (the k-th: k × this).
+SLEEVE_MM = 2.0
+
+
+def _coaxial(shafts: list[ShaftMark], bare: dict[str, tuple[float, float]], rings, link_of, train
+             ) -> list[ShaftMark]:
+    """The moving links on the central axis (not a ring's: it has its own disc and hub): the
+    input's (else the first's) shaft stays solid; every other gets a hollow shaft round it, k ×
+    SLEEVE_MM, from its own wheels or arm (``bare``: their span) out past the others on the side
+    the solid one does not leave by, with its bearing there."""
+    ring_links = {link_of[w.name].name for w in rings}
+    central = [sh for sh in shafts if sh.frame and sh.y == 0.0 and not sh.fixed and sh.link not in ring_links]
+    if len(central) < 2:
+        return shafts
+    inputs = {link_of[n].name for n, _ in train.inputs if n in link_of} | {n for n, _ in train.inputs}
+    solid = next((sh for sh in central if sh.link in inputs), central[0])
+    xs = [v for sh in central for v in bare[sh.link]]
+    left = solid.x0 < bare[solid.link][0] - 1e-9      # the solid shaft leaves to the left: the others to the right
+    out, k = [], 0
+    for sh in shafts:
+        if sh not in central or sh is solid:
+            out.append(sh)
+            continue
+        k += 1
+        lo, hi = bare[sh.link]
+        out.append(replace(sh, x0=lo, x1=max(xs) + PLANE_MM * 0.6 * k, sleeve=SLEEVE_MM * k) if left else
+                   replace(sh, x0=min(xs) - PLANE_MM * 0.6 * k, x1=hi, sleeve=SLEEVE_MM * k))
+    return out
 
 
 def _passive_notes(analysis: GearAnalysis) -> tuple[str, ...]:

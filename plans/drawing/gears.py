@@ -204,6 +204,12 @@ def _side_view(dwg, canvas: Canvas, sheet: GearSheet, ident: str, style: Style, 
     for k, s in enumerate(sheet.shafts):
         if s.fixed:
             continue                                   # a link held still is part of the frame
+        if s.sleeve > 0.0:                             # a hollow shaft round the central one
+            for j, y in enumerate((s.sleeve, -s.sleeve)):
+                canvas.line(g, (s.x0, y), (s.x1, y), width=thick, stroke_width=sw, id=f"{ident}-shaft{k}-{j}")
+            end = s.x1 if s.x1 >= max(xs) - 1e-9 else s.x0
+            support(canvas, g, (end, s.sleeve), k, f"{ident}-b", style)
+            continue
         for j, sign in enumerate((1, -1) if s.mirror else (1,)):
             y = sign * s.y
             canvas.line(g, (s.x0, y), (s.x1, y), width=thick, stroke_width=sw, id=f"{ident}-shaft{k}-{j}")
@@ -239,6 +245,12 @@ def _side_view(dwg, canvas: Canvas, sheet: GearSheet, ident: str, style: Style, 
                                     id=f"{wid}-g{side}")
                         canvas.strokes(g, _hatch(a, b, 1.0 if side == 0 else -1.0, style),
                                        stroke_width=fmt(style.thin, 3), id=f"{wid}-h{side}")
+            elif w.sleeve > 0.0:                       # on a hollow shaft: from it outwards, not across the axis
+                canvas.line(g, (w.x, w.sleeve), (w.x, top), width=thick, stroke_width=sw, id=wid)
+                canvas.line(g, (w.x, -w.sleeve), (w.x, bottom), width=thick, stroke_width=sw, id=f"{wid}-low")
+                for side, yy in enumerate((top, bottom)):
+                    canvas.line(g, (w.x - TICK_MM, yy), (w.x + TICK_MM, yy), width=thick, stroke_width=sw,
+                                id=f"{wid}-t{side}")
             else:
                 canvas.line(g, (w.x, bottom), (w.x, top), width=thick, stroke_width=sw, id=wid)
                 for side, yy in enumerate((top, bottom)):
