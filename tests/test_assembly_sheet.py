@@ -60,3 +60,21 @@ def test_the_sheet_draws_every_assembly_at_its_poses(name, tmp_path):
         r = inspect_svg(path)
         assert r.kind == "scheme" and not r.problems
         assert measure_layout(sheets.files[f]).clean
+
+
+def test_the_cycle_reports_each_positions_count(tmp_path):
+    """With a cycle, ``cycle.assemblies`` gives each group's count at every cycle position, the same
+    as that position's own entry; the positions sheet says whether a count changes."""
+    from pathlib import Path
+    text = Path(f"{EXAMPLES}/class3_six_link.toml").read_text(encoding="utf-8")
+    text = text.replace("angle = [30.0, 120.0, 210.0, 300.0]", "angle = 30.0\npositions = 12")
+    text = re.sub(r"^draw = \[.*\]$", 'draw = ["positions", "assemblies"]', text, flags=re.M)
+    path = tmp_path / "c3.toml"
+    path.write_text(text, encoding="utf-8")
+    sheets = render(path)
+    report = json.loads(sheets.files["c3.json"])
+    counts = report["cycle"]["assemblies"]
+    assert list(counts) == ["III(2-3-4-5)"] and len(counts["III(2-3-4-5)"]) == 12
+    assert counts["III(2-3-4-5)"] == [p["assemblies"]["III(2-3-4-5)"]["count"] for p in report["positions"]]
+    words = "".join(ET.fromstring(sheets.files["c3-positions.svg"]).itertext())
+    assert "keeps its count of real assemblies over the cycle: III(2-3-4-5) 2" in words

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 from ..scene import Scene
 from ..scene.drive import check_train_speed
 from ..scene.gears import GearTrain
-from .geometry import TrainGeometry, assembly_number, planet_sets, train_geometry
+from .geometry import TrainGeometry, assembly_number, internal_interference, planet_sets, train_geometry
 from .involute import GearPair, gear_pair, inv, inv_inverse, min_shift
 from .speeds import TrainSpeeds, Willis, carrier_ratio, central_links, exact, solve_train, tabular
 from .train import GearLink, Mesh, PassivePlanet, TrainStructure, train_structure
@@ -34,10 +34,12 @@ class GearAnalysis:
     @property
     def warnings(self) -> tuple[str, ...]:
         """One line each: undercut wheels, and the geometry left unchecked (no modules, or a
-        condition the checks do not cover, such as the assembly of a carrier's planets)."""
+        condition the checks do not cover, such as the assembly of a carrier's planets); without
+        modules, an internal mesh's tip interference (refused when modules are given)."""
         if self.geometry is None:
             return ("the wheels have no module: the train is solved from its teeth alone, its geometry "
-                    "(coaxial, assembly, neighbourhood, undercut) went unchecked",)
+                    "(coaxial, assembly, neighbourhood, undercut) went unchecked",
+                    *internal_interference(self.speeds.structure))
         return self.geometry.warnings + self.geometry.unchecked
 
 

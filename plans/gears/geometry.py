@@ -9,7 +9,14 @@ apart, which closes the triangle with the central axis when |a_p − a_q| ≤ r_
 (a double-planet train: the planets need not stand on one radius).
 
 Standard wheels are assumed (no profile shift, ha* = 1, α = 20°): the tip diameter is
-d_a = m·(z + 2) (external), the fewest teeth without undercut 17.
+d_a = m·(z + 2) (external), the fewest teeth without undercut 17. A wheel inside a ring gear is
+checked for the internal pair's tip (trochoid) interference, SDP/SI, Elements of Metric Gear
+Technology, §5.2 (b), Eq. (5-6) (:func:`plans.gears.contact.standard_tip_interference`): the
+smallest difference of teeth is 9 for wheels of 17 … 69 teeth, 10 for 11 … 16, 8 from 70 on. It
+does not depend on the module, so a train without modules is checked too, with a warning instead
+of a refusal. (The
+involute interference of a standard ring, its tip circle m(z − 2) inside the pinion's N1, is left
+to ``[gear_pair]``: it would refuse every planet under 18 teeth, and 18 in a ring of 90.)
 
 Imports only plans.errors, plans.scene and plans.gears (and the standard library).
 """
@@ -21,6 +28,7 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 
 from ..errors import StructureError
+from .contact import standard_tip_interference
 from .speeds import carrier_ratio, central_links
 from .train import GearLink, TrainStructure
 
@@ -68,6 +76,9 @@ def train_geometry(structure: TrainStructure) -> TrainGeometry | None:
         if ring is not None and train.wheel(ring).teeth <= train.wheel(inner).teeth:
             raise StructureError(f"ring gear {ring!r} ({train.wheel(ring).teeth} teeth) must have more teeth than "
                                  f"{inner!r} ({train.wheel(inner).teeth}) inside it", key="gears.meshes")
+    problems = internal_interference(structure)
+    if problems:
+        raise StructureError(problems[0], key="gears.meshes")
     arm: dict[str, float] = {}
     planet_arm: dict[str, float] = {}
     planet_angle: dict[str, float] = {}
@@ -99,6 +110,28 @@ def train_geometry(structure: TrainStructure) -> TrainGeometry | None:
             _neighbours(structure, c, placed, k)
     return TrainGeometry(radius=radius, arm=arm, warnings=tuple(warnings), unchecked=tuple(unchecked),
                          planet_arm=planet_arm, planet_angle=planet_angle, sets=sets)
+
+
+def internal_interference(structure: TrainStructure) -> list[str]:
+    """One line per internal mesh of standard wheels whose inner wheel's tip strikes the ring's
+    teeth as it leaves the mesh (tip interference, see the module), scene order; a ring with no
+    more teeth than its inner wheel is said so (the module-given check refuses it first)."""
+    train = structure.train
+    out = []
+    for m in structure.meshes:
+        if m.external:
+            continue
+        ring, inner = (m.a, m.b) if train.wheel(m.a).internal else (m.b, m.a)
+        z2, z1 = train.wheel(ring).teeth, train.wheel(inner).teeth
+        if z2 <= z1:
+            out.append(f"ring gear {ring!r} ({z2} teeth) must have more teeth than {inner!r} ({z1}) inside it")
+        elif standard_tip_interference(z1, z2) < -1e-12:
+            need = next((z for z in range(z2 + 1, z1 + 100) if standard_tip_interference(z1, z) >= -1e-12), None)
+            more = f"give the ring at least {need} teeth" if need is not None else "give the ring more teeth"
+            out.append(f"ring gear {ring!r} ({z2} teeth) and {inner!r} ({z1}) inside it interfere: the tip of "
+                       f"{inner!r} strikes the ring's teeth as it leaves the mesh (tip interference of standard "
+                       f"wheels, z2 − z1 = {z2 - z1}); {more}")
+    return out
 
 
 def planet_sets(structure: TrainStructure, carrier: str) -> int | None:

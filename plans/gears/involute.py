@@ -17,7 +17,15 @@ x·m (positive away from the wheel's centre).
 - the specific sliding at B1, B2 (the ends of the active line): ϑ = (v_t1 − v_t2)/v_t of the
   wheel's own sliding speed, ϑ1 = 1 − ρ2/(u·ρ1), ϑ2 = 1 − u·ρ1/ρ2 with u = z2/z1 and ρ the
   distances from N1, N2;
-- undercut by the rack: x < x_min = ha* − z·sin²α/2.
+- undercut by the rack: x < x_min = ha* − z·sin²α/2;
+- the paths of approach (from B2 to the pitch point P) and recess (from P to B1), the pinion
+  driving: g2 − r_w2·sin α_w and g1 − r_w1·sin α_w with g = √(r_a² − r_b²); the arc of contact
+  B1B2/cos α_w on the working pitch circles, and the angles the wheels turn through while one pair
+  is in contact, B1B2/r_b (Khurmi & Gupta, Theory of Machines, ch. Toothed Wheels).
+
+Unequal addenda ``addenda`` = (ha1*, ha2*): each tip is d + 2(ha_i* + x_i − Δy)·m; both wheels are
+cut by one basic rack of the larger addendum (``addendum``, the roots and x_min). The internal pair
+and the pinion with a rack are in :mod:`.contact` (the same :class:`GearPair`, ``kind`` says which).
 """
 
 from __future__ import annotations
@@ -63,13 +71,17 @@ def min_shift(z: int | float, alpha: float = math.radians(20.0), addendum: float
 
 @dataclass(frozen=True)
 class GearPair:
-    """One external pair (see the module): ``z``, ``x`` (wheel 1, wheel 2), ``module`` m (mm),
+    """One pair (see the module; ``kind`` "external", "internal" or "rack"): ``z``, ``x`` (wheel 1,
+    wheel 2), ``module`` m (mm),
     ``alpha`` α and ``alpha_w`` α_w (rad), ``a``, ``a_w`` (mm), ``y``, ``delta_y``; per wheel
     (tuples of two, mm): ``d``, ``db``, ``dw``, ``da``, ``df``, ``s`` (reference), ``sa`` (tip);
     ``p``, ``pb`` (mm), ``line`` N1N2, ``active`` B1B2 (mm), ``contact_ratio`` ε_α,
-    ``sliding`` (ϑ1 at B2, ϑ2 at B1), ``x_min`` per wheel, ``undercut`` per wheel."""
+    ``sliding`` (ϑ1 at B2, ϑ2 at B1), ``x_min`` per wheel, ``undercut`` per wheel; ``addenda``
+    (ha1*, ha2*) of the tips, ``approach`` and ``recess`` (mm, the pinion driving). A rack (wheel 2)
+    has z = None and infinite diameters; its x_min is −inf (not cut by a rack), its line N1N2 inf;
+    a ring gear's x_min is −inf too (it is cut by a pinion cutter, the rack's limit is not its)."""
 
-    z: tuple[int, int]
+    z: tuple[int, int | None]
     x: tuple[float, float]
     module: float
     alpha: float
@@ -95,15 +107,38 @@ class GearPair:
     sliding: tuple[float, float]
     x_min: tuple[float, float]
     undercut: tuple[bool, bool]
+    kind: str = "external"
+    addenda: tuple[float, float] | None = None
+    approach: float = math.nan
+    recess: float = math.nan
 
     @property
     def working_pressure_angle_deg(self) -> float:
         return math.degrees(self.alpha_w)
 
+    @property
+    def tip_addenda(self) -> tuple[float, float]:
+        """(ha1*, ha2*): ``addenda``, or the one ``addendum`` of both wheels."""
+        return self.addenda if self.addenda is not None else (self.addendum, self.addendum)
+
+    @property
+    def arc(self) -> float:
+        """The arc of contact on the working pitch circles, B1B2 / cos α_w, mm."""
+        return self.active / math.cos(self.alpha_w)
+
+    @property
+    def angles_turned(self) -> tuple[float, float | None]:
+        """The angles (rad) the pinion and wheel 2 turn through from engagement to disengagement,
+        B1B2 / r_b; None for a rack (it travels :attr:`arc` mm)."""
+        return (2.0 * self.active / self.db[0],
+                None if self.kind == "rack" else 2.0 * self.active / self.db[1])
+
 
 def gear_pair(z1: int, z2: int, module: float, *, x1: float = 0.0, x2: float = 0.0,
-              pressure_angle_deg: float = 20.0, addendum: float = 1.0, clearance: float = 0.25) -> GearPair:
-    """The geometry of the external pair z1/z2 of ``module`` (mm) with shifts x1, x2."""
+              pressure_angle_deg: float = 20.0, addendum: float = 1.0, clearance: float = 0.25,
+              addenda: tuple[float, float] | None = None) -> GearPair:
+    """The geometry of the external pair z1/z2 of ``module`` (mm) with shifts x1, x2; ``addenda``
+    (ha1*, ha2*) the tips' addenda when unequal (the cutter's ``addendum`` then their larger)."""
     alpha = math.radians(pressure_angle_deg)
     m = module
     z = (z1, z2)
@@ -116,7 +151,8 @@ def gear_pair(z1: int, z2: int, module: float, *, x1: float = 0.0, x2: float = 0
     d = tuple(m * k for k in z)
     db = tuple(v * math.cos(alpha) for v in d)
     dw = tuple(v / math.cos(alpha_w) for v in db)
-    da = tuple(dv + 2.0 * (addendum + xv - dy) * m for dv, xv in zip(d, x))
+    tips = addenda if addenda is not None else (addendum, addendum)
+    da = tuple(dv + 2.0 * (hv + xv - dy) * m for dv, xv, hv in zip(d, x, tips))
     df = tuple(dv - 2.0 * (addendum + clearance - xv) * m for dv, xv in zip(d, x))
     s = tuple(m * (math.pi / 2.0 + 2.0 * xv * math.tan(alpha)) for xv in x)
     sa = tuple(dav * (sv / dv + inv(alpha) - inv(math.acos(min(dbv / dav, 1.0))))
@@ -135,4 +171,6 @@ def gear_pair(z1: int, z2: int, module: float, *, x1: float = 0.0, x2: float = 0
     undercut = tuple(xv < xm - 1e-12 for xv, xm in zip(x, x_min))
     return GearPair(z=z, x=x, module=m, alpha=alpha, addendum=addendum, clearance=clearance, alpha_w=alpha_w, a=a,
                     a_w=a_w, y=y, delta_y=dy, d=d, db=db, dw=dw, da=da, df=df, s=s, sa=sa, p=p, pb=pb, line=line,
-                    active=active, contact_ratio=active / pb, sliding=sliding, x_min=x_min, undercut=undercut)
+                    active=active, contact_ratio=active / pb, sliding=sliding, x_min=x_min, undercut=undercut,
+                    addenda=addenda, approach=g2 - dw[1] / 2 * math.sin(alpha_w),
+                    recess=g1 - dw[0] / 2 * math.sin(alpha_w))

@@ -6,10 +6,14 @@ work, warned where it works poorly:
 - ε_α < 1 is refused; ε_α < 1.2 warns;
 - interference (a tip circle reaching past the other wheel's tangency point N) is refused
   (a warning when only the cutting is drawn: the wheels are not put in mesh);
-- undercut (x < x_min) warns.
+- undercut (x < x_min) warns;
+- an internal pair (``internal``): the involute interference (the ring's tip inside N1) and the
+  tip (trochoid) interference of :mod:`.contact` are refused like the external interference;
+- a pinion with a rack (``rack``): the rack's tip line past N1 is interference, refused alike.
 
 Shift rules: "none" (x = 0); "no_undercut": x_i = max(x_min,i, 0), the smallest shifts that are
-not negative and avoid undercut; "balanced": x1 = −x2 (the centre distance stays m(z1 + z2)/2),
+not negative and avoid undercut (a rack is not shifted by it; an internal pair takes no rule);
+"balanced": x1 = −x2 (the centre distance stays m(z1 + z2)/2),
 chosen so that the specific sliding at the two ends of the active line is equal (ϑ1 at B2 =
 ϑ2 at B1), within the bounds that keep both wheels free of undercut.
 
@@ -24,7 +28,8 @@ from dataclasses import dataclass
 from ..errors import SceneError
 from ..scene.gear_pair import MAX_PAIR_TEETH, MIN_PAIR_TEETH, GearPairSpec
 from ..scene.gears import GearTrain
-from .involute import GearPair, gear_pair, min_shift
+from .contact import involute_interference, internal_pair, pair_tip_interference, rack_pair, sliding_velocities
+from .involute import GearPair, gear_pair, inv, min_shift
 
 __all__ = ["PairAnalysis", "analyse_pair", "THIN_TIP", "LOW_CONTACT_RATIO"]
 
@@ -38,18 +43,27 @@ LOW_CONTACT_RATIO = 1.2
 class PairAnalysis:
     """The pair (:class:`~plans.gears.involute.GearPair`), the rule that gave its shifts
     ("given", "none", "no_undercut", "balanced"), the cutter's tip radius ρ (mm), the wheels'
-    names (from a train's mesh, else "1", "2") and one-line ``warnings``."""
+    names (from a train's mesh, else "1", "2"), one-line ``warnings``, the pinion's speed ``n1``
+    (rpm, None when not given) and the ``sliding_velocity`` at engagement and disengagement (m/s)."""
 
     pair: GearPair
     rule: str
     tip_radius: float
     names: tuple[str, str]
     warnings: tuple[str, ...]
+    n1: float | None = None
+    sliding_velocity: tuple[float, float] | None = None
 
 
-def _build(spec: GearPairSpec, z1: int, z2: int, m: float, x1: float, x2: float) -> GearPair:
-    return gear_pair(z1, z2, m, x1=x1, x2=x2, pressure_angle_deg=spec.pressure_angle, addendum=spec.addendum,
-                     clearance=spec.clearance)
+def _build(spec: GearPairSpec, z1: int, z2: int | None, m: float, x1: float, x2: float,
+           internal: bool = False) -> GearPair:
+    common = dict(pressure_angle_deg=spec.pressure_angle, addendum=spec.addendum, clearance=spec.clearance,
+                  addenda=spec.addenda)
+    if spec.rack:
+        return rack_pair(z1, m, x1=x1, **common)
+    if internal:
+        return internal_pair(z1, z2, m, x1=x1, x2=x2, **common)
+    return gear_pair(z1, z2, m, x1=x1, x2=x2, **common)
 
 
 def _balanced(spec: GearPairSpec, z1: int, z2: int, m: float) -> tuple[float, float]:
@@ -99,9 +113,7 @@ def analyse_pair(spec: GearPairSpec, gears: GearTrain | None = None, *, meshing:
         a, b = wheels
         if tuple(spec.mesh) not in gears.meshes and tuple(reversed(spec.mesh)) not in gears.meshes:
             raise SceneError(f"wheels {a.name} and {b.name} are not in mesh in [gears] meshes", key="gear_pair.mesh")
-        if a.internal or b.internal:
-            raise SceneError(f"the pair is an external one; {a.name if a.internal else b.name} is a ring gear",
-                             key="gear_pair.mesh")
+        internal = a.internal or b.internal
         if a.module is None or b.module is None:
             raise SceneError(f"wheels {a.name} and {b.name} need a module in [gears.wheels] to be drawn in mesh",
                              key="gear_pair.mesh")
@@ -110,14 +122,22 @@ def analyse_pair(spec: GearPairSpec, gears: GearTrain | None = None, *, meshing:
                 raise SceneError(f"wheel {w.name} has {w.teeth} teeth; a wheel of the pair drawn in mesh has "
                                  f"{MIN_PAIR_TEETH} … {MAX_PAIR_TEETH} teeth (its generation is drawn tooth by "
                                  "tooth): mesh another pair of [gears]", key="gear_pair.mesh")
-        if a.teeth > b.teeth:
-            a, b = b, a                      # the pinion first
+        if a.internal or (a.teeth > b.teeth and not b.internal):
+            a, b = b, a                      # the pinion first, a ring gear second
+        if internal and b.teeth <= a.teeth:
+            raise SceneError(f"ring gear {b.name} ({b.teeth} teeth) must have more teeth than {a.name} ({a.teeth}) "
+                             "inside it", key="gear_pair.mesh")
         z1, z2, m, names = a.teeth, b.teeth, a.module, (a.name, b.name)
     else:
-        z1, z2, m = spec.z1, spec.z2, spec.module
+        z1, z2, m, internal = spec.z1, spec.z2, spec.module, spec.internal
     alpha = math.radians(spec.pressure_angle)
     if spec.x1 is not None:
         rule, (x1, x2) = "given", (spec.x1, spec.x2)
+    elif internal and spec.shift != "none":
+        raise SceneError(f"shift = {spec.shift!r} is a rule for an external pair, and ring gear {names[1]} makes this "
+                         "one internal; give x1, x2", key="gear_pair.shift")
+    elif spec.shift == "no_undercut" and spec.rack:
+        rule, (x1, x2) = spec.shift, (max(min_shift(z1, alpha, spec.addendum), 0.0), 0.0)
     elif spec.shift == "no_undercut":
         rule, (x1, x2) = spec.shift, (max(min_shift(z1, alpha, spec.addendum), 0.0),
                                       max(min_shift(z2, alpha, spec.addendum), 0.0))
@@ -125,29 +145,32 @@ def analyse_pair(spec: GearPairSpec, gears: GearTrain | None = None, *, meshing:
         rule, (x1, x2) = spec.shift, _balanced(spec, z1, z2, m)
     else:
         rule, (x1, x2) = "none", (0.0, 0.0)
-    if x1 + x2 <= -(z1 + z2) / (2.0 * math.tan(alpha)) * (math.tan(alpha) - alpha):
+    if internal:
+        if inv(alpha) + 2.0 * math.tan(alpha) * (x2 - x1) / (z2 - z1) <= 0.0:
+            raise SceneError(f"x2 − x1 = {x2 - x1:g} is too negative for the internal pair {z1}/{z2}: the working "
+                             "pressure angle would be 0 or less", key="gear_pair.x1")
+    elif not spec.rack and x1 + x2 <= -(z1 + z2) / (2.0 * math.tan(alpha)) * (math.tan(alpha) - alpha):
         raise SceneError(f"x1 + x2 = {x1 + x2:g} is too negative for {z1} + {z2} teeth: the working pressure angle "
                          "would be 0 or less", key="gear_pair.x1")
-    p = _build(spec, z1, z2, m, x1, x2)
+    p = _build(spec, z1, z2, m, x1, x2, internal)
     warnings: list[str] = []
     for k in range(2):
         w = names[k]
+        teeth = "a rack" if p.z[k] is None else f"{p.z[k]} teeth"
         if p.sa[k] <= 0.0:
-            raise SceneError(f"the tip of wheel {w} ({p.z[k]} teeth, x = {p.x[k]:.4g}) is pointed: s_a = "
-                             f"{p.sa[k]:.4g} mm ≤ 0; give a smaller shift", key=f"gear_pair.x{k + 1}")
+            by_addendum = p.z[k] is None or p.addenda is not None
+            fix = "give a smaller addendum" + ("" if p.z[k] is None else " or shift") if by_addendum else \
+                "give a smaller shift"
+            raise SceneError(f"the tip of wheel {w} ({teeth}, x = {p.x[k]:.4g}) is pointed: s_a = "
+                             f"{p.sa[k]:.4g} mm ≤ 0; {fix}",
+                             key="gear_pair.addendum" if by_addendum else f"gear_pair.x{k + 1}")
         if p.sa[k] < THIN_TIP * m:
             warnings.append(f"the tip of wheel {w} is thin: s_a = {p.sa[k]:.4g} mm < {THIN_TIP:g}·m = "
                             f"{THIN_TIP * m:.4g} mm")
-    g = [math.sqrt(max((da / 2) ** 2 - (db / 2) ** 2, 0.0)) for da, db in zip(p.da, p.db)]
-    for k in range(2):
-        if g[k] > p.line * (1 + 1e-12):
-            other = names[1 - k]
-            text = (f"interference: the tip circle of wheel {names[k]} (d_a = {p.da[k]:.4g} mm) reaches past "
-                             f"the tangency point N of wheel {other} on the line of action ({g[k]:.4g} mm from its "
-                             f"own N, the line N1N2 is {p.line:.4g} mm): wheel {other} needs a larger shift")
-            if meshing:
-                raise SceneError(text, key="gear_pair")
-            warnings.append(text)
+    for text in _interference(p, names):
+        if meshing:
+            raise SceneError(text, key="gear_pair")
+        warnings.append(text)
     if p.contact_ratio < 1.0:
         text = (f"the contact ratio ε_α = {p.contact_ratio:.4g} is under 1: the pair does not mesh continuously; "
                 "give more teeth or smaller shifts")
@@ -160,4 +183,46 @@ def analyse_pair(spec: GearPairSpec, gears: GearTrain | None = None, *, meshing:
         if p.undercut[k]:
             warnings.append(f"wheel {names[k]} ({p.z[k]} teeth, x = {p.x[k]:.4g}) is undercut: x < x_min = "
                             f"{p.x_min[k]:.4g}")
-    return PairAnalysis(pair=p, rule=rule, tip_radius=spec.tip_radius * m, names=names, warnings=tuple(warnings))
+    sliding = sliding_velocities(p, spec.n1) if spec.n1 is not None else None
+    return PairAnalysis(pair=p, rule=rule, tip_radius=spec.tip_radius * m, names=names, warnings=tuple(warnings),
+                        n1=spec.n1, sliding_velocity=sliding)
+
+
+def _interference(p: GearPair, names: tuple[str, str]) -> list[str]:
+    """One line per interference of the pair ``p`` (see the module)."""
+    out = []
+    g = [math.sqrt(max((da / 2) ** 2 - (db / 2) ** 2, 0.0)) if math.isfinite(da) else math.inf
+         for da, db in zip(p.da, p.db)]
+    if p.kind == "external":
+        for k in range(2):
+            if g[k] > p.line * (1 + 1e-12):
+                other = names[1 - k]
+                out.append(f"interference: the tip circle of wheel {names[k]} (d_a = {p.da[k]:.4g} mm) reaches past "
+                           f"the tangency point N of wheel {other} on the line of action ({g[k]:.4g} mm from its "
+                           f"own N, the line N1N2 is {p.line:.4g} mm): wheel {other} needs a larger shift")
+    elif p.kind == "rack":
+        pn1 = p.d[0] / 2 * math.sin(p.alpha)
+        if p.approach > pn1 * (1 + 1e-12):
+            out.append(f"interference: the tip line of the rack reaches past the tangency point N1 of wheel "
+                       f"{names[0]} (the path of approach is {p.approach:.4g} mm, PN1 = {pn1:.4g} mm): give wheel "
+                       f"{names[0]} a larger shift x1, more teeth or the rack a smaller addendum")
+    else:
+        margin = involute_interference(p)
+        if p.da[1] < p.db[1]:
+            out.append(f"interference: the tip circle of ring gear {names[1]} (d_a = {p.da[1]:.4g} mm) lies inside its "
+                       f"base circle (d_b = {p.db[1]:.4g} mm): its teeth end in no involute there and cut the pinion's "
+                       "flank (involute interference); give the ring more teeth, a smaller addendum or a positive "
+                       "shift x2")
+        elif margin < -1e-12 * p.line:
+            out.append(f"interference: the tip circle of ring gear {names[1]} (d_a = {p.da[1]:.4g} mm) meets the line "
+                       f"of action {g[1]:.4g} mm from its N2, inside the tangency point N1 of wheel {names[0]} "
+                       f"(N1N2 = {p.line:.4g} mm): the ring's tip would cut the pinion's flank below its base circle "
+                       "(involute interference); give the ring a smaller addendum or a positive shift x2, or the "
+                       "pinion more teeth")
+        tip = pair_tip_interference(p)
+        if tip < -1e-12:
+            out.append(f"tip interference: the tip of wheel {names[0]} strikes the teeth of ring gear {names[1]} as it "
+                       f"leaves the mesh (θ1·z1/z2 + inv α_w − inv α_a2 − θ2 = {tip:.4g} rad < 0, "
+                       "SDP/SI Eq. 5-6); "
+                       f"z2 − z1 = {p.z[1] - p.z[0]} is too few: give the ring more teeth")
+    return out

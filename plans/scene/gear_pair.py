@@ -1,5 +1,7 @@
-"""The involute pair of a scene (``[gear_pair]``): the teeth, module and basic rack of one external
-spur pair and its profile shifts (numbers, or a rule); or a mesh of the scene's gear train.
+"""The involute pair of a scene (``[gear_pair]``): the teeth, module and basic rack of one spur
+pair — external, internal (``internal = true``: wheel 2 a ring gear) or a pinion with a rack
+(``rack = true``: no z2) — its profile shifts (numbers, or a rule), the addenda (one, or one per
+wheel) and the pinion's speed ``n1``; or a mesh of the scene's gear train.
 
 Imports only plans.errors and plans.scene.checks (and the standard library).
 """
@@ -22,7 +24,12 @@ SHIFTS = ("none", "no_undercut", "balanced")
 MIN_PAIR_TEETH, MAX_PAIR_TEETH = 5, 500
 #: The standard cutter's tip radius ρ*, in modules (α = 20°, c* = 0.25: c*/(1 − sin α) ≈ 0.38).
 STANDARD_TIP_RADIUS = 0.38
-_KEYS = {"z1", "z2", "module", "pressure_angle", "addendum", "clearance", "x1", "x2", "shift", "tip_radius", "mesh"}
+_KEYS = {"z1", "z2", "module", "pressure_angle", "addendum", "clearance", "x1", "x2", "shift", "tip_radius", "mesh",
+         "internal", "rack", "n1"}
+#: Bounds of one wheel's addendum coefficient in ``addendum = [ha1, ha2]``.
+MAX_WHEEL_ADDENDUM = 2.5
+#: The largest pinion speed, rpm.
+MAX_RPM = 1e6
 
 
 @dataclass(frozen=True)
@@ -32,7 +39,10 @@ class GearPairSpec:
     cutter's tip rounding in modules: by default 0.38, or c*/(1 − sin α) where 0.38 does not fit),
     and the shifts ``x1``, ``x2`` or the ``shift`` rule ("none"; "no_undercut": the smallest shifts,
     0 or more, that avoid undercut; "balanced": x1 = −x2, equal specific sliding at the two ends of
-    the active line). ``mesh`` names two wheels of ``[gears]`` instead of z1, z2, module."""
+    the active line). ``mesh`` names two wheels of ``[gears]`` instead of z1, z2, module (a ring
+    gear among them makes the pair internal). ``addenda`` (ha1*, ha2*) when the scene gives one per
+    wheel (``addendum`` is then their larger, the cutter's); ``internal`` wheel 2 is a ring gear;
+    ``rack`` wheel 2 is a rack (``z2`` None); ``n1`` the pinion's speed, rpm (None: not given)."""
 
     z1: int | None = None
     z2: int | None = None
@@ -45,6 +55,10 @@ class GearPairSpec:
     shift: str | None = None
     tip_radius: float = STANDARD_TIP_RADIUS
     mesh: tuple[str, str] | None = None
+    addenda: tuple[float, float] | None = None
+    internal: bool = False
+    rack: bool = False
+    n1: float | None = None
 
 
 def _teeth(value: Any, key: str) -> int:
@@ -84,6 +98,18 @@ def read_gear_pair(table: Any) -> GearPairSpec:
     if extra:
         raise SceneError(f"unknown key {extra[0]!r}; [gear_pair] has {', '.join(sorted(_KEYS))}",
                          key=f"gear_pair.{extra[0]}")
+    internal, rack = (_flag(table, k) for k in ("internal", "rack"))
+    if internal and rack:
+        raise SceneError("wheel 2 is a ring gear or a rack, not both; remove internal or rack", key="gear_pair.rack")
+    if rack and "mesh" in table:
+        raise SceneError("mesh names two wheels of [gears], and a rack is none of them; remove rack or mesh",
+                         key="gear_pair.rack")
+    if internal and "mesh" in table:
+        raise SceneError("mesh takes the wheels' kind from [gears] (a ring gear there has internal = true); "
+                         "remove internal", key="gear_pair.internal")
+    if rack and "z2" in table:
+        raise SceneError("a rack has no teeth count z2; remove z2 (rack = true makes wheel 2 a rack)",
+                         key="gear_pair.z2")
     mesh = None
     if "mesh" in table:
         m = table["mesh"]
@@ -96,12 +122,16 @@ def read_gear_pair(table: Any) -> GearPairSpec:
                              key=f"gear_pair.{clash[0]}")
         mesh = (m[0], m[1])
     else:
-        missing = [k for k in ("z1", "z2", "module") if k not in table]
+        need = ("z1", "module") if rack else ("z1", "z2", "module")
+        missing = [k for k in need if k not in table]
         if missing:
-            raise SceneError(f"[gear_pair] needs z1, z2 and module (or mesh = [\"a\", \"g\"]): {missing[0]} is missing",
-                             key=f"gear_pair.{missing[0]}")
+            what = "z1 and module (rack = true)" if rack else "z1, z2 and module (or mesh = [\"a\", \"g\"])"
+            raise SceneError(f"[gear_pair] needs {what}: {missing[0]} is missing", key=f"gear_pair.{missing[0]}")
     z1 = _teeth(table["z1"], "gear_pair.z1") if "z1" in table else None
     z2 = _teeth(table["z2"], "gear_pair.z2") if "z2" in table else None
+    if internal and z1 is not None and z2 is not None and z2 <= z1:
+        raise SceneError(f"a ring gear has more teeth than the pinion inside it: z2 = {z2} ≤ z1 = {z1}; give z2 > z1",
+                         key="gear_pair.z2")
     module = None
     if "module" in table:
         module = number(table["module"], "gear_pair.module", bound=1e3, why=" mm")
@@ -110,9 +140,7 @@ def read_gear_pair(table: Any) -> GearPairSpec:
     alpha = number(table.get("pressure_angle", 20.0), "gear_pair.pressure_angle", bound=90.0, why="°")
     if not 10.0 <= alpha <= 35.0:
         raise SceneError(f"pressure_angle is 10° … 35° (20° standard), got {alpha:g}", key="gear_pair.pressure_angle")
-    ha = number(table.get("addendum", 1.0), "gear_pair.addendum", bound=10.0)
-    if not 0.5 <= ha <= 1.5:
-        raise SceneError(f"addendum ha* is 0.5 … 1.5 (1 standard), got {ha:g}", key="gear_pair.addendum")
+    ha, addenda = _addendum(table.get("addendum", 1.0))
     c = number(table.get("clearance", 0.25), "gear_pair.clearance", bound=10.0)
     if not 0.0 <= c <= 0.5:
         raise SceneError(f"clearance c* is 0 … 0.5 (0.25 standard), got {c:g}", key="gear_pair.clearance")
@@ -130,6 +158,9 @@ def read_gear_pair(table: Any) -> GearPairSpec:
     has_x = "x1" in table or "x2" in table
     if has_x and "shift" in table:
         raise SceneError("give the shifts x1, x2 or a shift rule, not both", key="gear_pair.shift")
+    if rack and "x2" in table:
+        raise SceneError("a rack is not shifted: its reference line keeps its place; shift the pinion with x1 "
+                         "and remove x2", key="gear_pair.x2")
     x1 = number(table.get("x1", 0.0), "gear_pair.x1", bound=3.0) if has_x else None
     x2 = number(table.get("x2", 0.0), "gear_pair.x2", bound=3.0) if has_x else None
     shift = None
@@ -138,5 +169,44 @@ def read_gear_pair(table: Any) -> GearPairSpec:
         if shift not in SHIFTS:
             raise SceneError(f"shift is {', '.join(repr(s) for s in SHIFTS)}, got {SHOW.repr(shift)}",
                              key="gear_pair.shift")
+        if (internal and shift != "none") or (rack and shift == "balanced"):
+            rule_for, give = ("an external pair", "x1, x2 for an internal pair") if internal else \
+                ("two wheels", "x1 for a rack")
+            raise SceneError(f"shift = {shift!r} is a rule for {rule_for}; give {give}", key="gear_pair.shift")
+    n1 = None
+    if "n1" in table:
+        n1 = number(table["n1"], "gear_pair.n1", bound=MAX_RPM, why=" rpm")
+        if not n1 > 0.0:
+            raise SceneError(f"n1 is the pinion's speed, above 0 rpm, got {n1:g}", key="gear_pair.n1")
     return GearPairSpec(z1=z1, z2=z2, module=module, pressure_angle=alpha, addendum=ha, clearance=c, x1=x1, x2=x2,
-                        shift=shift, tip_radius=rho, mesh=mesh)
+                        shift=shift, tip_radius=rho, mesh=mesh, addenda=addenda, internal=internal, rack=rack, n1=n1)
+
+
+def _flag(table: Mapping, key: str) -> bool:
+    value = table.get(key, False)
+    if not isinstance(value, bool):
+        what = "wheel 2 is a ring gear" if key == "internal" else "wheel 2 is a rack"
+        raise SceneError(f"{key} is true ({what}) or false, got {SHOW.repr(value)}", key=f"gear_pair.{key}")
+    return value
+
+
+def _addendum(value: Any) -> tuple[float, tuple[float, float] | None]:
+    """ha* of the cutter and the addenda per wheel (None when one number is given): one number
+    0.5 … 1.5, or [ha1, ha2] each 0 … 2 (the cutter's ha* then their larger)."""
+    if isinstance(value, (list, tuple)):
+        if len(value) != 2:
+            raise SceneError(f"addendum is one number or one per wheel, [ha1, ha2]; got {len(value)} numbers",
+                             key="gear_pair.addendum")
+        pair = tuple(number(v, "gear_pair.addendum", bound=10.0) for v in value)
+        for k, v in enumerate(pair):
+            if not 0.0 <= v <= MAX_WHEEL_ADDENDUM:
+                raise SceneError(f"the addendum of wheel {k + 1} (in modules: an addendum in mm over m) is 0 … "
+                                 f"{MAX_WHEEL_ADDENDUM:g}, got {v:g}", key="gear_pair.addendum")
+        if max(pair) == 0.0:
+            raise SceneError("both addenda are 0: the teeth would not meet; give ha1 or ha2 above 0",
+                             key="gear_pair.addendum")
+        return max(pair), (pair[0], pair[1])
+    ha = number(value, "gear_pair.addendum", bound=10.0)
+    if not 0.5 <= ha <= 1.5:
+        raise SceneError(f"addendum ha* is 0.5 … 1.5 (1 standard), got {ha:g}", key="gear_pair.addendum")
+    return ha, None

@@ -23,10 +23,14 @@ from ...scene import Scene
 __all__ = ["cycle_sheets"]
 
 
-def cycle_sheets(scene: Scene, cycle: Cycle, scales: Scales, stem: str, style: Style) -> tuple[dict[str, str], dict]:
+def cycle_sheets(scene: Scene, cycle: Cycle, scales: Scales, stem: str, style: Style,
+                 assembled=None) -> tuple[dict[str, str], dict]:
     """The cycle sheets the scene draws (positions, diagrams, velocities) and the report's
     ``cycle``: the positions, the output's extremes and, with velocities, the table of values
-    (with diagrams, how far the graphical differentiation is from the exact values)."""
+    (with diagrams, how far the graphical differentiation is from the exact values). With
+    ``assembled`` (each cycle position's assemblies, ``draw`` asking for them): ``cycle.assemblies``
+    = group → the count of real assemblies at each position, and the positions sheet names the
+    intervals where a count changes (two assemblies merge at a branch point between them)."""
     c, motion, out = scene.cycle, cycle.motion, cycle.output
     d = motion.mechanism.drive
     unit = "m" if out.kind == "slider" else "rad"
@@ -40,6 +44,15 @@ def cycle_sheets(scene: Scene, cycle: Cycle, scales: Scales, stem: str, style: S
     if ext is not None:
         data["extremes"] = [{"angle": float(a) % 360.0, "s": float(s)}
                             for a, s in zip(cycle.extremes.values, ext.s)]
+    changes: list[str] = []
+    if assembled is not None:
+        counts = {g: [a[g].count for a in assembled] for g in assembled[0]}
+        data["assemblies"] = counts
+        for g, n in counts.items():
+            for k in range(len(n)):
+                j = (k + 1) % len(n)
+                if n[k] != n[j]:
+                    changes.append(f"{g}: {n[k]} → {n[j]} assemblies between positions {k} and {j}")
     if "positions" in scene.draw:
         sheet = positions_sheet(motion, cycle.extremes, cycle.dense, output=out.link, point=out.point,
                                 kind=out.kind, extreme_s=None if ext is None else ext.s, trace=c.trace)
@@ -50,6 +63,12 @@ def cycle_sheets(scene: Scene, cycle: Cycle, scales: Scales, stem: str, style: S
                 f"ψ = {math.degrees(sheet.stroke):.4g}°, the swing"
             notes.append(f"{travel} of link {out.link} between its extreme positions {out.point}′ "
                          f"(φ_{d.link} = {a0:.2f}°) and {out.point}″ (φ_{d.link} = {a1:.2f}°), drawn thick")
+        if changes:
+            notes.append("The count of real assemblies changes (a branch point, where two assemblies merge, lies "
+                         "between): " + "; ".join(changes))
+        elif assembled is not None:
+            notes.append("Every group keeps its count of real assemblies over the cycle: " + ", ".join(
+                f"{g} {n[0]}" for g, n in data["assemblies"].items()))
         files[f"{stem}-positions.svg"] = draw_positions(
             sheet, Heading(scene.title, "Positions of the mechanism over one revolution", position),
             ident="positions", style=style, notes=tuple(notes))

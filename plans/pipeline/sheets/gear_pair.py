@@ -15,33 +15,55 @@ from ...drawing.svg import Heading
 from ...gears.pair import PairAnalysis
 from ...scene import Scene
 
-__all__ = ["pair_report", "pair_sheets"]
+__all__ = ["pair_report", "pair_sheets", "pair_not_drawn"]
 
 
 def pair_report(a: PairAnalysis) -> dict[str, Any]:
-    """The JSON ``gear_pair``: lengths in mm, angles in degrees, per wheel [wheel 1, wheel 2]."""
+    """The JSON ``gear_pair``: lengths in mm, angles in degrees, per wheel [wheel 1, wheel 2]; what
+    a rack has not (its teeth, diameters, x_min, the line N1N2 ending at infinity) is null, a ring
+    gear's x_min too. ``kind`` "external", "internal" or "rack"; the paths of approach and recess,
+    the arc of contact (mm), ``angle_turned`` [pinion, wheel 2] in degrees (wheel 2's null for a
+    rack, whose travel is ``rack_travel`` mm); with ``n1``, ``sliding_velocity`` in m/s."""
     p = a.pair
-    two = lambda t: [float(v) for v in t]          # noqa: E731
-    return {"wheels": list(a.names), "z": list(p.z), "module": p.module, "pressure_angle": math.degrees(p.alpha),
-            "addendum": p.addendum, "clearance": p.clearance, "tip_radius": a.tip_radius, "shift_rule": a.rule,
-            "x1": p.x[0], "x2": p.x[1], "x_min": two(p.x_min), "undercut": list(p.undercut),
-            "working_pressure_angle": math.degrees(p.alpha_w), "reference_centre_distance": p.a,
-            "centre_distance": p.a_w, "y": p.y, "delta_y": p.delta_y,
-            "d": two(p.d), "db": two(p.db), "dw": two(p.dw), "da": two(p.da), "df": two(p.df),
-            "p": p.p, "pb": p.pb, "s": two(p.s), "sa": two(p.sa),
-            "line_of_action": p.line, "active_length": p.active, "contact_ratio": p.contact_ratio,
-            "specific_sliding": {"wheel1_at_B2": _finite(p.sliding[0]), "wheel2_at_B1": _finite(p.sliding[1])}}
+    two = lambda t: [_finite(v) for v in t]        # noqa: E731
+    turned = [None if v is None else math.degrees(v) for v in p.angles_turned]
+    out = {"wheels": list(a.names), "z": list(p.z), "module": p.module, "pressure_angle": math.degrees(p.alpha),
+           "addendum": p.addendum if p.addenda is None else list(p.addenda), "clearance": p.clearance,
+           "tip_radius": a.tip_radius, "shift_rule": a.rule,
+           "x1": p.x[0], "x2": p.x[1], "x_min": two(p.x_min), "undercut": list(p.undercut),
+           "working_pressure_angle": math.degrees(p.alpha_w), "reference_centre_distance": p.a,
+           "centre_distance": p.a_w, "y": p.y, "delta_y": p.delta_y,
+           "d": two(p.d), "db": two(p.db), "dw": two(p.dw), "da": two(p.da), "df": two(p.df),
+           "p": p.p, "pb": p.pb, "s": two(p.s), "sa": two(p.sa),
+           "line_of_action": _finite(p.line), "active_length": p.active, "contact_ratio": p.contact_ratio,
+           "specific_sliding": {"wheel1_at_B2": _finite(p.sliding[0]), "wheel2_at_B1": _finite(p.sliding[1])},
+           "kind": p.kind, "path_of_approach": p.approach, "path_of_recess": p.recess,
+           "path_of_contact": p.active, "arc_of_contact": p.arc, "angle_turned": turned}
+    if p.kind == "rack":
+        out["rack_travel"] = p.arc
+    if a.n1 is not None and a.sliding_velocity is not None:
+        out["n1"] = a.n1
+        out["sliding_velocity"] = {"engagement": a.sliding_velocity[0], "disengagement": a.sliding_velocity[1]}
+    return out
 
 
 def _finite(v: float) -> float | None:
-    """None where the active line reaches past N (interference): the sliding is not defined."""
+    """None where a value is not defined: the sliding where the active line reaches past N
+    (interference), a rack's diameters and its line N1N2, the x_min of a rack or a ring gear."""
     return float(v) if math.isfinite(v) else None
 
 
+#: Why an internal pair or a rack has no sheets (a warning, one line).
+NOT_DRAWN = "the meshing and cutting sheets of {what} are not drawn yet; the report holds its geometry"
+
+
 def pair_sheets(scene: Scene, a: PairAnalysis, stem: str, style: Style) -> dict[str, str]:
-    """The meshing and cutting sheets the scene draws (file name → SVG)."""
+    """The meshing and cutting sheets the scene draws (file name → SVG); none for an internal
+    pair or a rack (:func:`pair_not_drawn` says so)."""
     p = a.pair
     files: dict[str, str] = {}
+    if p.kind != "external":
+        return files
     given = (f"z = {p.z[0]}/{p.z[1]}, m = {p.module:g} mm, α = {math.degrees(p.alpha):g}°, "
              f"x = {p.x[0]:.4g}/{p.x[1]:.4g} ({a.rule.replace('_', ' ')})")
     if "meshing" in scene.draw:
@@ -65,9 +87,18 @@ def pair_sheets(scene: Scene, a: PairAnalysis, stem: str, style: Style) -> dict[
                  f"less the cutter rolled over it; it is {under}.",)
         scales = f"{s.k:g}:1 (μ = {1 / s.k:g} mm/mm)"
         files[f"{stem}-cutting.svg"] = draw_pair_sheet(
-            s, Heading(scene.title, "Generation of wheel 1 by the rack cutter", given), ident="cutting", style=style,
+            s, Heading(scene.title, f"Generation of wheel {a.names[0]} by the rack cutter", given), ident="cutting", style=style,
             notes=notes, scales=scales)
     return files
+
+
+def pair_not_drawn(scene: Scene, a: PairAnalysis) -> tuple[str, ...]:
+    """The warning (one line) when the scene asks for sheets the pair ``a`` does not have yet: an
+    internal pair's or a rack's meshing and cutting sheets."""
+    asked = [k for k in ("meshing", "cutting") if k in scene.draw]
+    if a.pair.kind == "external" or not asked:
+        return ()
+    return (NOT_DRAWN.format(what="an internal pair" if a.pair.kind == "internal" else "a rack"),)
 
 
 def _text(v: float) -> str:
