@@ -92,6 +92,7 @@ import shapely
 
 from .checking_geometry import GEOMETRY_TOL_MM, check_plan, similarity_ratio
 from .checking_gears import gear_problems
+from .checking_areas import area_checks
 from .checking_groups import GROUP, check_group_diagram
 from .checking_read import (_SVG, _TRANSFORM, _Union, _decimals, _ends, _line_data, _number, _paper_problems,
                             _point_name, _transformed)
@@ -204,6 +205,7 @@ def inspect_svg(path: str | Path, precision: float | None = WRITER_PRECISION) ->
         if g.get("data-contact-ratio") is not None:
             _contact_ratio(report, g, lines)
     problems += gear_problems(root, precision)
+    area_checks(report, root, precision)
     return report
 
 

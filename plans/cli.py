@@ -29,10 +29,43 @@ def _train_table(r: Rendered) -> list[str]:
     return [f"  gears: W = {s.structure.mobility}; {speeds}"]
 
 
+def _rotor_table(r: Rendered) -> list[str] | None:
+    """The balancing masses of a rotor alone, one line (None for any other scene)."""
+    import json
+
+    rotor = json.loads(r.files.get(f"{r.stem}.json", "{}")).get("rotor")
+    if rotor is None:
+        return None
+    masses = "; ".join(f"plane {b['plane']:g} m: {b['mass']:.6g} kg at {b['angle']:.4g}°" for b in rotor["balancing"])
+    return [f"{r.stem}: rotor, {rotor['kind']} balance", f"  {masses}"]
+
+
+def _flywheel_table(r: Rendered) -> list[str] | None:
+    """The flywheel of a flywheel problem alone ([turning], [operation]), a line each (None for any other scene)."""
+    import json
+
+    data = json.loads(r.files.get(f"{r.stem}.json", "{}"))
+    if "turning" not in data and "operation" not in data:
+        return None
+    lines = [f"{r.stem}: flywheel problem"]
+    if "turning" in data:
+        t = data["turning"]
+        known = "".join(f", {k} = {t[k]:.6g}{u}" for k, u in (("delta", ""), ("inertia", " kg·m²"), ("mass", " kg"))
+                        if t[k] is not None)
+        lines.append(f"  turning: P = {t['power']:.6g} W, ΔE = {t['energy_fluctuation']:.6g} J{known}")
+    if "operation" in data:
+        o = data["operation"]
+        lines.append(f"  operation: P = {o['power']:.6g} W, {o['per_minute']:.4g} a minute"
+                     + "".join(f", {k} = {o[k]:.6g}{u}" for k, u in (("rpm_after", " rpm"), ("mass", " kg"))
+                               if o[k] is not None))
+    return lines
+
+
 def _table(r: Rendered) -> str:
     m = r.motion
     if m is None:
-        return "\n".join([f"{r.stem}: gear train"] + _train_table(r))
+        rotor = (_rotor_table(r) or _flywheel_table(r)) if r.train is None else None
+        return "\n".join(rotor if rotor is not None else [f"{r.stem}: gear train"] + _train_table(r))
     mech = m.mechanism
     unit = "deg" if mech.drive.kind.angular else "m"
     lines = [f"{r.stem}: {m.structure.formula}   μl = {r.scales.mu_l:g} m/mm"
@@ -216,9 +249,10 @@ def _count(text: str, option: str, lo: int, hi: int) -> int:
 
 
 def _examples() -> list[Path]:
-    """The bundled scenes: the linkages, then the gear trains (examples/gears)."""
+    """The bundled scenes: the linkages, then the gear trains (examples/gears), the rotors
+    (examples/balancing) and the flywheel problems without a linkage (examples/flywheel)."""
     out = []
-    for package in ("plans.examples", "plans.examples.gears"):
+    for package in ("plans.examples", "plans.examples.gears", "plans.examples.balancing", "plans.examples.flywheel"):
         root = resources.files(package)
         out += sorted(Path(str(p)) for p in root.iterdir() if p.name.endswith(".toml"))
     return out

@@ -28,7 +28,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("plans.dynamics",),
     ("plans.constructions",),
     ("plans.drawing",),
-    ("plans.checking", "plans.checking_read", "plans.checking_gears", "plans.checking_groups", "plans.checking_report", "plans.checking_geometry", "plans.layout",
+    ("plans.checking", "plans.checking_read", "plans.checking_gears", "plans.checking_groups", "plans.checking_areas", "plans.checking_report", "plans.checking_geometry", "plans.layout",
      "plans.export", "plans.output"),
     ("plans.pipeline",),
     ("plans.handout", "plans.bench"),

@@ -161,8 +161,9 @@ def test_missing_file_is_reported(tmp_path, capsys):
 
 
 def test_demo_renders_packaged_examples(demo_rendered):
-    trains = sorted(p.stem for p in (EXAMPLES[0].parent / "gears").glob("*.toml"))
-    assert trains and sorted(p.stem for p in demo_rendered.glob("*.json")) == sorted([p.stem for p in EXAMPLES] + trains)
+    """Every bundled scene: the linkages, the gear trains, the rotors and the flywheel problems."""
+    more = sorted(p.stem for sub in ("gears", "balancing", "flywheel") for p in (EXAMPLES[0].parent / sub).glob("*.toml"))
+    assert more and sorted(p.stem for p in demo_rendered.glob("*.json")) == sorted([p.stem for p in EXAMPLES] + more)
 
 
 def test_plan_images_are_scaled_velocities(rendered):

@@ -61,6 +61,13 @@ def kind_of(scene: Scene) -> str:
     """The kind of assignment the scene makes (see the module); a scene no handout is made of
     (a synthesis to run, an involute pair alone) is refused naming what to give instead."""
     if scene.drive is None:
+        if scene.rotor is not None:
+            raise SceneError("a handout is made of a gear train ([gears]), a linkage or a machine; a rotor's "
+                             "balancing ([rotor]) has none yet", key="rotor")
+        if scene.flywheel_only:
+            raise SceneError("a handout is made of a gear train ([gears]), a linkage or a machine; a flywheel problem "
+                             "([turning], [operation]) has none yet",
+                             key="turning" if scene.turning is not None else "operation")
         if scene.synthesis is not None:
             raise SceneError("a [synthesis] scene finds its train when it is drawn: a handout varies a train "
                              "given by its teeth; render it, then copy the found wheels into [gears]", key="synthesis")

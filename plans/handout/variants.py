@@ -40,9 +40,9 @@ MAX_VARIANTS = 999
 #: Draws tried for one random variant before giving up.
 MAX_TRIES = 200
 
-#: The tables only a scene has (a linkage, a gear train, a gear pair, a synthesis): a file with
-#: one of them and no base is a scene given where a variants file was expected.
-_SCENE_KEYS = {"points", "links", "drive", "gears", "gear_pair", "synthesis"}
+#: The tables only a scene has (a linkage, a gear train, a gear pair, a synthesis, a rotor): a file
+#: with one of them and no base is a scene given where a variants file was expected.
+_SCENE_KEYS = {"points", "links", "drive", "gears", "gear_pair", "synthesis", "rotor"}
 _DRIVE_KEYS = {True: ("angle", "omega", "epsilon"), False: ("displacement", "velocity", "acceleration")}
 
 

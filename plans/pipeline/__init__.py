@@ -27,8 +27,11 @@ from .json_report import report, report_text
 from .motion_checks import check_triads, motion_warnings
 from .naming import MAX_STEM_CHARS, checked_stem, file_stem, stem_of
 from .rest import at_rest
+from .rotor import render_rotor
+from .turning import render_flywheel
 from .result import Rendered, Sheet, Sheets
 from .scales import scene_scales
+from .sheets.assemblies import assembly_sheets
 from .sheets.centres import centres_sheets
 from .sheets.cycle import cycle_sheets
 from .sheets.forces import LEVER_RTOL, force_sheets, force_warnings
@@ -38,7 +41,7 @@ from .sheets.page import Page
 from .sheets.plans import plan_sheets
 from .sheets.scheme import scheme_sheets
 from .sheets.dynamics import dynamics_sheets, dynamics_warnings
-from .sheets.gear_pair import pair_report, pair_sheets
+from .sheets.gear_pair import pair_not_drawn, pair_report, pair_sheets
 from .stages import (assembly_analysis, force_analysis, machine_motion, machine_startup, record_stages, solve_motion,
                      solve_scene, true_speed_motion)
 
@@ -60,6 +63,10 @@ def render_scene(path: str | Path, style: Style = Style()) -> Rendered:
 def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rendered:
     """Every file of a scene already read, named ``<stem>…``; ``where`` (the scene's file, or
     None) locates error messages. Nothing here reads or writes a file."""
+    if scene.rotor is not None:       # a rotor alone: its balancing
+        return render_rotor(scene, stem=stem, style=style, where=where)
+    if scene.flywheel_only:           # a flywheel problem alone: [turning], [operation]
+        return render_flywheel(scene, stem=stem, style=style, where=where)
     path = where or f"scene {scene.title!r}"     # the prefix of the messages below
     train: GearAnalysis | None = None
     found = None
@@ -104,6 +111,8 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
         files.update(koshel)
         warnings.extend(not_drawn)
         files.update(plan_sheets(page, scales, rest, path))
+        if assembled is not None:
+            files.update(assembly_sheets(page, assembled[i]))
     levers = {}
     if forces is not None:
         sheets, levers = force_sheets(scene, motion, forces, scales, own, stem=stem, path=path, style=style)
@@ -111,7 +120,7 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
         warnings.extend(force_warnings(scene, motion, forces, levers, own, path))
     data = report(scene, motion, scales, forces, levers, assembled)
     if cycle is not None:
-        sheets, data["cycle"] = cycle_sheets(scene, cycle, scales, stem, style)
+        sheets, data["cycle"] = cycle_sheets(scene, cycle, scales, stem, style, assembled)
         files.update(sheets)
     if machine is not None:
         sheets, data["cycle"]["dynamics"] = dynamics_sheets(scene, machine, forces, levers, stem, style, started)
@@ -143,7 +152,7 @@ def _render_train(scene: Scene, train: GearAnalysis | None, *, stem: str, style:
             raise exc.in_file(where) if where and hasattr(exc, "in_file") else exc
         data["gear_pair"] = pair_report(pair)
         files.update(pair_sheets(scene, pair, stem, style))
-        warnings += pair.warnings
+        warnings += pair.warnings + pair_not_drawn(scene, pair)
     files[f"{stem}.json"] = report_text(data)
     at = scene.file or f"scene {scene.title!r}"
     return Rendered(stem, files, None, None, tuple(f"{at}: {w}" for w in warnings), None, train)

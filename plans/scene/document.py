@@ -17,13 +17,16 @@ from .gear_pair import read_gear_pair
 from .gears import read_gears, read_synthesis
 from .loads import read_balance, read_forces, read_gravity, read_masses, read_moments
 from .options import read_cycle, read_draw
+from .rotor import read_rotor_scene
+from .turning import read_flywheel_scene
 from .scales import read_scales, refuse_scales
 from .sketch import check_dimensions, read_lengths, read_links, read_points, read_sliders
 from .gears import GearTrain
 from .values import FRAME, MAX_TITLE_CHARS, Scene
 
 _TOP_KEYS = {"title", "description", "points", "links", "sliders", "drive", "lengths", "plans", "scales",
-             "masses", "forces", "moments", "gravity", "balance", "gears", "synthesis", "dynamics", "motor", "gear_pair"}
+             "masses", "forces", "moments", "gravity", "balance", "gears", "synthesis", "dynamics", "motor", "gear_pair",
+             "rotor", "turning", "flywheel", "operation"}
 #: The keys of a scene that is a gear train alone (no [points], [links], [drive]).
 _TRAIN_KEYS = {"title", "description", "plans", "gears", "synthesis", "gear_pair"}
 #: What a scene of gears alone draws: the train's sheet, the pair in mesh and its cutting.
@@ -53,6 +56,14 @@ def _parse(data: Mapping[str, Any], file: str | None) -> Scene:
         raise SceneError(f"title has {len(title)} characters; it is one line at the top of every sheet, keep it "
                          f"within {MAX_TITLE_CHARS} (put the rest in description)", key="title")
     description = text(data.get("description", ""), "description", line=False)
+    if "rotor" in data:           # a rotor alone: its masses and their balancing
+        rotor, draw = read_rotor_scene(data)
+        return Scene(title=title or "Rotor", points={}, links={}, sliders=(), drive=None, draw=draw,
+                     description=description, file=file, rotor=rotor)
+    if {"turning", "operation", "flywheel"} & set(data):     # a flywheel problem alone: no linkage
+        turning, flywheel, operation, draw = read_flywheel_scene(data)
+        return Scene(title=title or "Flywheel", points={}, links={}, sliders=(), drive=None, draw=draw,
+                     description=description, file=file, turning=turning, flywheel=flywheel, operation=operation)
     if "synthesis" in data:
         if "gears" in data or {"points", "links", "drive"} & set(data):
             raise SceneError("[synthesis] finds a gear train of its own: a scene with it has no [gears] and no "
@@ -90,6 +101,9 @@ def _parse(data: Mapping[str, Any], file: str | None) -> Scene:
     check_dimensions(points, links, sliders, lengths)
     plans_table = subtable(data, "plans")
     draw, senses = read_draw({k: v for k, v in plans_table.items() if k not in ("output", "trace", "at")})
+    if "balancing" in draw:
+        raise SceneError('"balancing" balances a rotor\'s masses: put [rotor] in a scene of its own (no [points], '
+                         '[links], [drive]) and remove it here', key="plans.draw")
     if gears is not None and "draw" not in plans_table:
         draw = (*draw, "gears")
     if gears is None and "gears" in draw:

@@ -16,12 +16,14 @@ from typing import Mapping
 from .dynamics import Dynamics
 from .gear_pair import GearPairSpec
 from .gears import GearTrain, Synthesis
+from .rotor import RotorSpec
+from .turning import FlywheelSpec, OperationSpec, TurningSpec
 
 #: The frame's name in [links] (a link name, a string).
 FRAME = "0"
 #: The sheets a scene may draw (``[plans] draw``), in the order they are drawn.
 DRAWABLE = ("scheme", "velocity", "acceleration", "centres", "positions", "diagrams", "velocities", "forces", "lever",
-            "gears", "dynamics", "startup", "meshing", "cutting", "assemblies")
+            "gears", "dynamics", "startup", "meshing", "cutting", "assemblies", "balancing")
 #: What needs the force analysis (kinetostatics): the force plans and Zhukovsky's lever.
 FORCE_SHEETS = ("forces", "lever")
 #: Sheets of the whole cycle: they need ``[drive] positions = N``.
@@ -277,11 +279,20 @@ class Scene:
     synthesis: Synthesis | None = None  # [synthesis]: a planetary train to find (then gears is None)
     dynamics: Dynamics | None = None    # [dynamics]: the machine's motion under its loads (needs the cycle)
     gear_pair: GearPairSpec | None = None   # [gear_pair]: one involute pair in mesh (a scene of gears alone)
+    rotor: RotorSpec | None = None     # [rotor]: rotating masses to balance (a scene of a rotor alone)
+    turning: TurningSpec | None = None      # [turning]: a crank torque over a cycle (a flywheel problem alone)
+    flywheel: FlywheelSpec | None = None    # [flywheel]: the flywheel of [turning] or [operation]
+    operation: OperationSpec | None = None  # [operation]: punching, riveting (a flywheel problem alone)
 
     @property
     def train_only(self) -> bool:
         """Whether the scene is a gear train with no linkage."""
-        return self.drive is None
+        return self.drive is None and self.rotor is None and not self.flywheel_only
+
+    @property
+    def flywheel_only(self) -> bool:
+        """Whether the scene is a flywheel problem with no linkage ([turning] and/or [operation])."""
+        return self.drive is None and (self.turning is not None or self.operation is not None)
 
     @property
     def wants_forces(self) -> bool:
