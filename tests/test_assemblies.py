@@ -199,6 +199,18 @@ def test_a_triad_with_six_assemblies():
     assert _agree(motion, motion.structure.groups[0], 0, starts=400) == 6
 
 
+#: A triad with four real assemblies at 45° (found by a random search over class3_six_link's
+#: sketch moved ±0.12 m, seed 4, and rounded to 0.1 mm).
+FOUR = {"O": [0.0, 0.0], "A": [0.0354, 0.0354], "B": [0.2127, 0.0663], "F": [0.5076, 0.1607], "C": [0.2109, -0.1628],
+        "D": [0.4173, -0.2245], "M": [0.3114, 0.3059]}
+
+
+def test_a_triad_with_four_assemblies():
+    """Four real assemblies: the elimination and the brute force find the same four."""
+    motion = solve_scene(parse_scene(_triad(FOUR, 45.0)))
+    assert _agree(motion, motion.structure.groups[0], 0, starts=400) == 4
+
+
 def test_json_contract():
     scene = read_scene(EXAMPLES / "class4_six_link.toml")
     scene = scene.__class__(**{**scene.__dict__, "draw": (*scene.draw, "assemblies")})

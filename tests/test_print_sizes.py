@@ -172,8 +172,9 @@ def _wanted(kind: str, d, key: dict[str, str]) -> dict[tuple[str, str], list[tup
         return {("pictures", ""): [b for what, b in _key_drawings(key["gears"]) if what.startswith("gear-")]}
     if kind == "dynamics":
         got = _key_drawings(key["dynamics"])
-        return {("diagrams", ""): [_union([b for what, b in got if what in "MATI"])],
-                ("wittenbauer", ""): [b for what, b in got if what == "wittenbauer"]}
+        # I_r(φ) is drawn turned under Wittenbauer's diagram (its construction by projection)
+        return {("diagrams", ""): [_union([b for what, b in got if what in "MAT"])],
+                ("wittenbauer", ""): [_union([b for what, b in got if what in ("wittenbauer", "I")])]}
     names = {"velocity": "velocity", "acceleration": "acceleration", "forces": "force", "lever": "lever"}
     kinds = tuple(names) if kind == "forces" else ("velocity", "acceleration")
     motion = d.sheets.motion
