@@ -124,3 +124,19 @@ def link_ref(value: Any, key: str, links: Mapping[str, Any], what: str = "link")
         raise SceneError(f"unknown {what} {SHOW.repr(value)}; use a name from [links] (a string, e.g. \"1\")",
                          key=key)
     return value
+
+
+def read_own_draw(data: Mapping[str, Any], sheets: tuple[str, ...], what: str) -> tuple[str, ...]:
+    """``[plans]`` of a scene of a kind of its own (a rotor, a flywheel problem): ``draw`` alone,
+    a list of ``sheets`` (empty: the report alone); ``what`` names the kind in the messages."""
+    plans = data.get("plans", {})
+    if not isinstance(plans, Mapping):
+        raise SceneError("[plans] must be a table", key="plans")
+    extra = sorted(str(k) for k in set(plans) - {"draw"})
+    if extra:
+        raise SceneError(f"{what}'s [plans] has only draw, not {extra[0]!r}", key=f"plans.{extra[0]}")
+    draw = plans.get("draw", [])
+    if not isinstance(draw, list) or any(d not in sheets for d in draw):
+        raise SceneError(f"{what} draws {', '.join(repr(d) for d in sheets)} or [] (the report alone), got "
+                         f"{SHOW.repr(draw)}", key="plans.draw")
+    return tuple(dict.fromkeys(draw))

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from typing import Any, Mapping
 
 from ..errors import SceneError
-from .checks import SHOW, number
+from .checks import SHOW, number, read_own_draw
 
 __all__ = ["RotorMass", "RotorSpec", "read_rotor", "read_rotor_scene", "ROTOR_KEYS", "ROTOR_SHEETS",
            "MAX_ROTOR_MASSES", "MIN_PLANE_GAP"]
@@ -191,15 +191,6 @@ def read_rotor_scene(data: Mapping[str, Any]) -> tuple[RotorSpec, tuple[str, ...
     if extra:
         raise SceneError(f"[{extra[0]}] does not belong with [rotor]: a rotor is balanced in a scene of its own, "
                          f"which has {', '.join(sorted(ROTOR_KEYS))}", key=extra[0])
-    plans = data.get("plans", {})
-    if not isinstance(plans, Mapping):
-        raise SceneError("[plans] must be a table", key="plans")
-    extra = sorted(str(k) for k in set(plans) - {"draw"})
-    if extra:
-        raise SceneError(f"a rotor's [plans] has only draw, not {extra[0]!r}", key=f"plans.{extra[0]}")
-    draw = plans.get("draw", [])
-    if not isinstance(draw, list) or any(d not in ROTOR_SHEETS for d in draw):
-        raise SceneError(f"a rotor draws {', '.join(repr(d) for d in ROTOR_SHEETS)} or [] (the report alone), got "
-                         f"{SHOW.repr(draw)}", key="plans.draw")
-    return read_rotor(data["rotor"]), tuple(dict.fromkeys(draw))
+    draw = read_own_draw(data, ROTOR_SHEETS, "a rotor")
+    return read_rotor(data["rotor"]), draw
 

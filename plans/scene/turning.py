@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from typing import Any, Mapping
 
 from ..errors import SceneError
-from .checks import SHOW, is_number, number
+from .checks import SHOW, is_number, number, read_own_draw
 from .dynamics import MAX_DELTA, MAX_INERTIA, MIN_DELTA
 
 __all__ = ["Shape", "Torque", "TurningSpec", "RimSpec", "FlywheelSpec", "OperationSpec", "read_turning",
@@ -254,7 +254,7 @@ def _shape(value: Any, key: str, period: float) -> Shape:
 def _speed(table: Mapping[str, Any], name: str) -> float:
     """ω (rad/s) from ``rpm`` or ``omega``, one of the two."""
     if ("rpm" in table) == ("omega" in table):
-        raise SceneError(f"give the mean speed: rpm (rev/min) or omega (rad/s), one of the two", key=name)
+        raise SceneError("give the mean speed: rpm (rev/min) or omega (rad/s), one of the two", key=name)
     if "rpm" in table:
         return _positive(table["rpm"], f"{name}.rpm", MAX_RPM, "rpm") * math.pi / 30.0
     return _positive(table["omega"], f"{name}.omega", MAX_RPM * math.pi / 30.0, "rad/s")
@@ -426,16 +426,7 @@ def read_flywheel_scene(data: Mapping[str, Any]) -> tuple[TurningSpec | None, Fl
                          key="flywheel.rim")
     turning = read_turning(data["turning"], flywheel) if "turning" in data else None
     operation = read_operation(data["operation"], flywheel) if "operation" in data else None
-    plans = data.get("plans", {})
-    if not isinstance(plans, Mapping):
-        raise SceneError("[plans] must be a table", key="plans")
-    extra = sorted(str(k) for k in set(plans) - {"draw"})
-    if extra:
-        raise SceneError(f"a flywheel problem's [plans] has only draw, not {extra[0]!r}", key=f"plans.{extra[0]}")
-    draw = plans.get("draw", [])
-    if not isinstance(draw, list) or any(d not in FLYWHEEL_SHEETS for d in draw):
-        raise SceneError(f"a flywheel problem draws {', '.join(repr(d) for d in FLYWHEEL_SHEETS)} or [] (the report "
-                         f"alone), got {SHOW.repr(draw)}", key="plans.draw")
+    draw = read_own_draw(data, FLYWHEEL_SHEETS, "a flywheel problem")
     if draw and turning is None:
         raise SceneError('"turning" draws the turning-moment diagram of [turning]; add it or remove "turning" from '
                          "draw", key="plans.draw")
