@@ -78,3 +78,34 @@ def test_the_cycle_reports_each_positions_count(tmp_path):
     assert counts["III(2-3-4-5)"] == [p["assemblies"]["III(2-3-4-5)"]["count"] for p in report["positions"]]
     words = "".join(ET.fromstring(sheets.files["c3-positions.svg"]).itertext())
     assert "keeps its count of real assemblies over the cycle: III(2-3-4-5) 2" in words
+
+
+def test_choosing_another_assembly(tmp_path):
+    """[plans] assembly = { group = k }: the walk starts from assembly k at the first position (it is
+    the chosen one there, its points those of the default render's pose k), and a number beyond the
+    count, or a name that is no group, is refused in one line naming the key."""
+    from pathlib import Path
+
+    from plans.errors import SceneError
+
+    base = Path(f"{EXAMPLES}/class3_six_link.toml").read_text(encoding="utf-8")
+    plain = tmp_path / "plain.toml"
+    plain.write_text(re.sub(r"^draw = \[", 'draw = ["assemblies", ', base, count=1, flags=re.M), encoding="utf-8")
+    before = json.loads(render(plain).files["plain.json"])["positions"][0]["assemblies"]["III(2-3-4-5)"]["poses"]
+    other = next(k for k, p in enumerate(before) if not p["chosen"]) + 1
+    text = re.sub(r"^draw = \[", f'assembly = {{ "III(2-3-4-5)" = {other} }}\ndraw = ["assemblies", ', base,
+                  count=1, flags=re.M)
+    path = tmp_path / "chosen.toml"
+    path.write_text(text, encoding="utf-8")
+    after = json.loads(render(path).files["chosen.json"])["positions"]
+    poses = after[0]["assemblies"]["III(2-3-4-5)"]["poses"]
+    chosen = next(p for p in poses if p["chosen"])
+    for name, xy in before[other - 1]["points"].items():
+        assert math.dist(xy, chosen["points"][name]) <= 1e-9
+        assert math.dist(xy, after[0]["points"][name]["r"]) <= 1e-9
+    for bad, words in ((text.replace(f"= {other} }}", "= 7 }"), "has 2 real assemblies at 30°, not 7"),
+                       (text.replace('"III(2-3-4-5)"', '"III(9-9)"'), "is no group of this mechanism")):
+        path.write_text(bad, encoding="utf-8")
+        with pytest.raises(SceneError) as e:
+            render(path)
+        assert words in str(e.value) and "plans.assembly" in str(e.value)

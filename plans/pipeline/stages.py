@@ -15,8 +15,10 @@ import numpy as np
 
 from ..dynamics import MachineDynamics, Startup, at_true_speed, machine_dynamics, startup
 from ..kinematics import Motion, analyse
-from ..kinematics.assemblies import GroupAssemblies, assemblies
+from ..errors import SceneError
+from ..kinematics.assemblies import GroupAssemblies, assemblies, group_assemblies
 from ..kinematics.cycle import Cycle, solve_cycle
+from ..kinematics.walk import fmt
 from ..kinetostatics import Forces, Travel, forces_following, solve_forces
 from ..model import build_mechanism
 from ..scene import Scene
@@ -56,7 +58,46 @@ def solve_scene(scene: Scene) -> Motion:
 
 def solve_motion(scene: Scene) -> tuple[Motion, Cycle | None]:
     """The scene's motion and, with ``[drive] positions``, its solved revolution (the motion
-    is then the revolution's N positions)."""
+    is then the revolution's N positions). With ``[plans] assembly``, the walk starts from the
+    named assemblies at the first analysed position (:func:`with_assembly`)."""
+    motion, cycle = _solve_motion(scene)
+    if not scene.assembly:
+        return motion, cycle
+    return _solve_motion(with_assembly(scene, motion))
+
+
+def with_assembly(scene: Scene, motion: Motion) -> Scene:
+    """The scene sketched at the motion's first position with each group named in ``[plans]
+    assembly`` in its assembly of that number (1 … n, as the ``-assemblies`` sheet and the JSON
+    number them). Refused in one line: a name that is no group, a number beyond the group's count,
+    a group with groups attached after it (they would have to be re-assembled too), a linear drive
+    (its displacements count from the sketch)."""
+    groups = {g.name: g for g in motion.structure.groups}
+    if not motion.mechanism.drive.kind.angular:
+        raise SceneError("choosing an assembly re-sketches the mechanism at its first position: the drive must turn "
+                         "(its displacements count from the sketch)", key="plans.assembly")
+    points = {p: tuple(float(c) for c in motion.position(p)[0]) for p in scene.points}
+    value = fmt(motion.mechanism, float(motion.values[0]))
+    for name, k in scene.assembly.items():
+        g = groups.get(name)
+        if g is None:
+            raise SceneError(f"{name!r} is no group of this mechanism; its groups are {', '.join(groups)}",
+                             key=f"plans.assembly.{name}")
+        later = motion.structure.groups[motion.structure.groups.index(g) + 1:]
+        mine = {p for link in g.links for p in motion.mechanism.links[link].points}
+        if any(mine & {p for link in h.links for p in motion.mechanism.links[link].points} for h in later):
+            raise SceneError(f"group {name} has groups attached after it, which would have to be re-assembled too; "
+                             "only the last group's assembly (or a group nothing is attached to) can be chosen",
+                             key=f"plans.assembly.{name}")
+        found = group_assemblies(motion, g, 0)
+        if not k <= found.count:
+            raise SceneError(f"group {name} has {found.count} real assemblies at {value}, not {k}: see its "
+                             "-assemblies sheet (draw = [..., \"assemblies\"])", key=f"plans.assembly.{name}")
+        points.update(found.assemblies[k - 1].points)
+    return replace(scene, points=points, assembly={})
+
+
+def _solve_motion(scene: Scene) -> tuple[Motion, Cycle | None]:
     mech = build_mechanism(scene)
     structure = analyse_structure(mech)
     order = 2 if "acceleration" in scene.draw or scene.senses else \

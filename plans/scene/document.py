@@ -10,7 +10,7 @@ from __future__ import annotations
 from typing import Any, Mapping
 
 from ..errors import SceneError
-from .checks import SHOW, subtable, text
+from .checks import SHOW, subtable, text, whole
 from .drive import read_drive
 from .dynamics import read_dynamics
 from .gear_pair import read_gear_pair
@@ -100,7 +100,8 @@ def _parse(data: Mapping[str, Any], file: str | None) -> Scene:
     lengths = read_lengths(subtable(data, "lengths"), points, links)
     check_dimensions(points, links, sliders, lengths)
     plans_table = subtable(data, "plans")
-    draw, senses = read_draw({k: v for k, v in plans_table.items() if k not in ("output", "trace", "at")})
+    draw, senses = read_draw({k: v for k, v in plans_table.items() if k not in ("output", "trace", "at", "assembly")})
+    assembly = read_assembly(plans_table.get("assembly"))
     if "balancing" in draw:
         raise SceneError('"balancing" balances a rotor\'s masses: put [rotor] in a scene of its own (no [points], '
                          '[links], [drive]) and remove it here', key="plans.draw")
@@ -144,7 +145,26 @@ def _parse(data: Mapping[str, Any], file: str | None) -> Scene:
     return Scene(title=title or "Mechanism", points=points, links=links, sliders=sliders, drive=drive,
                  lengths=lengths, draw=draw, senses=senses, scales=scales, description=description, file=file,
                  cycle=cycle, masses=masses, forces=forces, moments=moments, gravity=gravity, balance=balance,
-                 gears=gears, dynamics=dynamics)
+                 gears=gears, dynamics=dynamics, assembly=assembly)
+
+
+def read_assembly(table: Any) -> dict[str, int]:
+    """``[plans] assembly``: group name → the number of its assembly to draw at the first analysed
+    position (as the ``-assemblies`` sheet numbers them, 1 …); the names are checked once the
+    structure is known."""
+    if table is None:
+        return {}
+    if not isinstance(table, Mapping) or not table:
+        raise SceneError('assembly is a table of a group\'s name and its number, e.g. { "III(2-3-4-5)" = 2 }',
+                         key="plans.assembly")
+    out = {}
+    for name, k in table.items():
+        n = whole(k)
+        if n is None or n < 1:
+            raise SceneError(f"the assembly of {name!r} is a whole number from 1 (its number on the -assemblies "
+                             f"sheet), got {SHOW.repr(k)}", key=f"plans.assembly.{name}")
+        out[str(name)] = n
+    return out
 
 
 def _train_only(data: Mapping[str, Any], title: str, description: str, gears: GearTrain | None,

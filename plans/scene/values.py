@@ -278,6 +278,7 @@ class Scene:
     gears: GearTrain | None = None  # [gears]: a train alone (no points, links, drive=None) or driving the crank
     synthesis: Synthesis | None = None  # [synthesis]: a planetary train to find (then gears is None)
     dynamics: Dynamics | None = None    # [dynamics]: the machine's motion under its loads (needs the cycle)
+    assembly: Mapping[str, int] = field(default_factory=dict)   # [plans] assembly: group → its number to draw
     gear_pair: GearPairSpec | None = None   # [gear_pair]: one involute pair in mesh (a scene of gears alone)
     rotor: RotorSpec | None = None     # [rotor]: rotating masses to balance (a scene of a rotor alone)
     turning: TurningSpec | None = None      # [turning]: a crank torque over a cycle (a flywheel problem alone)
