@@ -56,6 +56,11 @@ def _coords(sheet: GearSheet) -> list[tuple[float, float]]:
         pts += [ln.start, ln.end]
     pts += [sheet.pole, (sheet.pole[0], sheet.pole[1] - 6.0)]
     pts += [seg.head for seg in sheet.omega]
+    short, k = _short(sheet)
+    if short:                                          # the ω detail under the pole
+        ox, oy = _detail_origin(sheet)
+        pts += [(ox - 4.0, oy + 6.0), (ox + max(k * abs(s.head[0] - s.tail[0]) for s in short) + 14.0,
+                                       oy - 4.0 * len(short) - 3.0)]
     x, y = _table_at(sheet)
     pts += [(x, y), (x + sum(TABLE_COLUMNS_MM), y - ROW_MM * (len(sheet.table) + 1))]
     if sheet.end is not None:
@@ -326,4 +331,53 @@ def _omega_picture(dwg, canvas: Canvas, sheet: GearSheet, ident: str, style: Sty
         line.attribs["data-from"], line.attribs["data-to"] = "o", f"w{s.link}"
         canvas.label(labels, s.head, f"ω_{{{s.link}}}", size=style.small_text, prefer=(0.3, 1.0),
                      ident=f"{ident}-wl{k}", near=0.8, fill=style.vector_colour)
+    dwg.add(g)
+    _omega_detail(dwg, canvas, sheet, ident, style, labels)
+
+
+#: An ω segment drawn shorter than this is drawn again, enlarged, in a detail under the picture, mm.
+SHORT_MM = 5.0
+#: The enlargements a detail may take.
+DETAIL_FACTORS = (2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 500.0)
+
+
+def _short(sheet: GearSheet) -> tuple[list, float]:
+    """The ω segments drawn under SHORT_MM (not 0) and the smallest factor drawing them all at least
+    that long (1.0: none)."""
+    short = [s for s in sheet.omega if s.omega != 0.0 and abs(s.head[0] - s.tail[0]) < SHORT_MM]
+    if not short:
+        return [], 1.0
+    least = min(abs(s.head[0] - s.tail[0]) for s in short)
+    k = next((f for f in DETAIL_FACTORS if least * f >= SHORT_MM), DETAIL_FACTORS[-1])
+    return short, k
+
+
+def _detail_origin(sheet: GearSheet) -> tuple[float, float]:
+    return sheet.axis_x, sheet.pole[1] - 12.0
+
+
+def _omega_detail(dwg, canvas: Canvas, sheet: GearSheet, ident: str, style: Style, labels) -> None:
+    """The short ω segments again, k× longer, from a point under the pole (``data-plan="bound"``,
+    μ = μω/k): each measured, each named, the factor stated."""
+    short, k = _short(sheet)
+    if not short:
+        return
+    ox, oy = _detail_origin(sheet)
+    g = dwg.g(id=f"{ident}-omega-detail", stroke=style.colour, fill="none")
+    g.attribs["data-mu"] = repr(sheet.mu_omega / k)
+    g.attribs["data-plan"] = "bound"
+    g.attribs["data-vectors"] = str(len(short))
+    for j, s in enumerate(short):
+        y = oy - 4.0 * j
+        head = (ox + k * (s.head[0] - s.tail[0]), y)
+        line = vector(canvas, g, (ox, y), head, style.vector_colour, f"{ident}-dw{j}", f"{ident}-dwh{j}", style)
+        line.attribs["data-quantity"] = f"omega:{s.link}:detail"      # not the picture's own ω_L (its ray's end)
+        line.attribs["data-value"] = repr(abs(s.omega))
+        line.attribs["data-direction"] = _direction(canvas, (ox, y), head)
+        line.attribs["data-from"], line.attribs["data-to"] = f"o{j}", f"w{s.link}"
+        canvas.label(labels, head, f"ω_{{{s.link}}}", size=style.small_text, prefer=(1.0, 0.0),
+                     ident=f"{ident}-dwl{j}", near=0.8, fill=style.vector_colour)
+    canvas.text(dwg.add(dwg.g(id=f"{ident}-omega-detail-caption", fill=style.colour)),
+                canvas.paper((ox - 2.0, oy + 3.5)), f"detail ×{k:g} of the short ω segments, μ_ω = "
+                f"{sheet.mu_omega / k:.4g} (rad/s)/mm", size=style.small_text, ident=f"{ident}-dcap")
     dwg.add(g)
