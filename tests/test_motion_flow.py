@@ -33,10 +33,12 @@ KINEMATICS = "plans.kinematics"
 CONSTRUCTIONS_MAY_CALL = {"plans.kinematics.state.J", "plans.kinematics.state.cross",
                           "plans.kinematics.special.supports", "plans.kinematics.special.triad_groups"}
 #: The pipeline solves the scene (that is its kinematics step: one analysis, or the revolution
-#: of ``[drive] positions``, and, when the scene asks, every assembly of its groups) and reads
-#: the Motion it gets.
+#: of ``[drive] positions``, and, when the scene asks, every assembly of its groups — of one group
+#: at the first position when ``[plans] assembly`` chooses which to start from) and reads the
+#: Motion it gets; ``walk.fmt`` only writes a drive's value in a message.
 PIPELINE_MAY_CALL = {"plans.kinematics.solve.analyse", "plans.kinematics.cycle.solve_cycle",
-                     "plans.kinematics.assemblies.assemblies"}
+                     "plans.kinematics.assemblies.assemblies", "plans.kinematics.assemblies.group_assemblies",
+                     "plans.kinematics.walk.fmt"}
 #: LinkState's methods that compute motion: called only on a Motion (``motion.velocity(…)``,
 #: ``b.motion.velocity_at(…)``), never on a link state (``motion.links[l].velocity(x)``).
 STATE_METHODS = {"velocity", "acceleration", "with_velocity", "with_acceleration", "take", "seeded"}

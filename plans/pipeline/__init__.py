@@ -40,10 +40,13 @@ from .sheets.koshel import koshel_sheets
 from .sheets.page import Page
 from .sheets.plans import plan_sheets
 from .sheets.scheme import scheme_sheets
+from .sheets.shaking import shaking_sheets
 from .sheets.dynamics import dynamics_sheets, dynamics_warnings
 from .sheets.gear_pair import pair_not_drawn, pair_report, pair_sheets
 from .stages import (assembly_analysis, force_analysis, machine_motion, machine_startup, record_stages, solve_motion,
                      solve_scene, true_speed_motion)
+from .stages import shaking_forces
+from .shaking import counterweights_report, shaking_report
 
 __all__ = ["Rendered", "Sheet", "Sheets", "render", "render_scene", "report", "solve_scene", "record_stages",
            "stem_of", "at_rest", "read_scene", "LEVER_RTOL", "MAX_STEM_CHARS"]
@@ -97,6 +100,7 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
         forces = force_analysis(scene, motion, cycle)
         started = machine_startup(scene, machine)
         assembled = assembly_analysis(scene, motion)
+        shaking = shaking_forces(scene, motion)
     except PlansError as exc:
         raise exc.in_file(where) if where and hasattr(exc, "in_file") else exc
     check_triads(motion, path)
@@ -122,6 +126,11 @@ def _render(scene: Scene, *, stem: str, where: str | None, style: Style) -> Rend
     if cycle is not None:
         sheets, data["cycle"] = cycle_sheets(scene, cycle, scales, stem, style, assembled)
         files.update(sheets)
+    if shaking is not None:          # "shaking" needs the cycle (the scene's reader sees to it)
+        data["cycle"].update(shaking_report(shaking))
+        files.update(shaking_sheets(scene, shaking, stem, style))
+        if shaking.balanced is not None:
+            data["counterweights"] = counterweights_report(shaking)
     if machine is not None:
         sheets, data["cycle"]["dynamics"] = dynamics_sheets(scene, machine, forces, levers, stem, style, started)
         files.update(sheets)

@@ -14,6 +14,7 @@ from typing import Iterator
 import numpy as np
 
 from ..dynamics import MachineDynamics, Startup, at_true_speed, machine_dynamics, startup
+from ..dynamics.shaking import ShakingAnalysis, shaking_analysis
 from ..kinematics import Motion, analyse
 from ..errors import SceneError
 from ..kinematics.assemblies import GroupAssemblies, assemblies, group_assemblies
@@ -25,7 +26,7 @@ from ..scene import Scene
 from ..structure import analyse_structure
 
 __all__ = ["record_stages", "solve_scene", "solve_motion", "force_analysis", "output_travel", "machine_motion",
-           "assembly_analysis"]
+           "assembly_analysis", "shaking_forces"]
 
 #: The stages run, in order, while :func:`record_stages` is active (None otherwise).
 _stages: list[str] | None = None
@@ -36,7 +37,7 @@ _ORDER_STAGES = ("positions", "velocities", "accelerations")
 @contextlib.contextmanager
 def record_stages() -> Iterator[list[str]]:
     """Record the computing stages each render runs (``positions``, ``velocities``,
-    ``accelerations``, ``forces``, ``dynamics``), in order, into the list it yields."""
+    ``accelerations``, ``forces``, ``dynamics``, ``shaking``), in order, into the list it yields."""
     global _stages
     previous, _stages = _stages, []
     try:
@@ -106,6 +107,8 @@ def _solve_motion(scene: Scene) -> tuple[Motion, Cycle | None]:
         order = max(order, 2 if scene.wants_inertia else 1)
     if scene.dynamics is not None and scene.dynamics.true_speed:    # ε1 ≠ 0: accelerations at the true speed
         order = 2
+    if "shaking" in scene.draw:     # the shaking force: the centres' accelerations
+        order = 2
     _ran(*_ORDER_STAGES[:order + 1])
     c = scene.cycle
     if c is None:
@@ -170,3 +173,13 @@ def machine_startup(scene: Scene, machine: MachineDynamics | None) -> Startup | 
         return None
     _ran("startup")
     return startup(machine, scene.dynamics.motor, scene.dynamics.simulate.t_end)
+
+
+def shaking_forces(scene: Scene, motion: Motion) -> ShakingAnalysis | None:
+    """The shaking force, moment and centre of mass over the cycle, with the counterweights of
+    ``[counterweights]`` (:func:`plans.dynamics.shaking.shaking_analysis`), when ``draw`` holds
+    ``"shaking"``; None otherwise (then nothing of it is computed)."""
+    if "shaking" not in scene.draw:
+        return None
+    _ran("shaking")
+    return shaking_analysis(motion, scene)

@@ -11,6 +11,7 @@ from typing import Any, Mapping
 
 from ..errors import SceneError
 from .checks import SHOW, subtable, text, whole
+from .counterweights import read_counterweights
 from .drive import read_drive
 from .dynamics import read_dynamics
 from .gear_pair import read_gear_pair
@@ -26,7 +27,7 @@ from .values import FRAME, MAX_TITLE_CHARS, Scene
 
 _TOP_KEYS = {"title", "description", "points", "links", "sliders", "drive", "lengths", "plans", "scales",
              "masses", "forces", "moments", "gravity", "balance", "gears", "synthesis", "dynamics", "motor", "gear_pair",
-             "rotor", "turning", "flywheel", "operation"}
+             "rotor", "turning", "flywheel", "operation", "counterweights"}
 #: The keys of a scene that is a gear train alone (no [points], [links], [drive]).
 _TRAIN_KEYS = {"title", "description", "plans", "gears", "synthesis", "gear_pair"}
 #: What a scene of gears alone draws: the train's sheet, the pair in mesh and its cutting.
@@ -113,6 +114,11 @@ def _parse(data: Mapping[str, Any], file: str | None) -> Scene:
     cycle = read_cycle(cycle_keys, drive, plans_table, draw, points, links, sliders)
     scales = read_scales(subtable(data, "scales"))
     masses = read_masses(subtable(data, "masses"), links)
+    if "shaking" in draw and not any(m.mass > 0.0 for m in masses.values()):
+        raise SceneError('draw "shaking" sums the links\' inertia forces −m·a_S: give the moving links their masses '
+                         '([masses.NAME] mass = …, centre = "S")', key="plans.draw")
+    counterweights = read_counterweights(data["counterweights"], links, FRAME, draw) \
+        if "counterweights" in data else {}
     forces = read_forces(data.get("forces", []), links)
     follows = next((f for f in forces if f.follows_output), None)
     if follows is not None and cycle is None:
@@ -145,7 +151,7 @@ def _parse(data: Mapping[str, Any], file: str | None) -> Scene:
     return Scene(title=title or "Mechanism", points=points, links=links, sliders=sliders, drive=drive,
                  lengths=lengths, draw=draw, senses=senses, scales=scales, description=description, file=file,
                  cycle=cycle, masses=masses, forces=forces, moments=moments, gravity=gravity, balance=balance,
-                 gears=gears, dynamics=dynamics, assembly=assembly)
+                 gears=gears, dynamics=dynamics, assembly=assembly, counterweights=counterweights)
 
 
 def read_assembly(table: Any) -> dict[str, int]:

@@ -16,6 +16,7 @@ from typing import Mapping
 from .dynamics import Dynamics
 from .gear_pair import GearPairSpec
 from .gears import GearTrain, Synthesis
+from .counterweights import CounterweightSpec
 from .rotor import RotorSpec
 from .turning import FlywheelSpec, OperationSpec, TurningSpec
 
@@ -23,11 +24,11 @@ from .turning import FlywheelSpec, OperationSpec, TurningSpec
 FRAME = "0"
 #: The sheets a scene may draw (``[plans] draw``), in the order they are drawn.
 DRAWABLE = ("scheme", "velocity", "acceleration", "centres", "positions", "diagrams", "velocities", "forces", "lever",
-            "gears", "dynamics", "startup", "meshing", "cutting", "assemblies", "balancing")
+            "gears", "dynamics", "startup", "meshing", "cutting", "assemblies", "balancing", "shaking")
 #: What needs the force analysis (kinetostatics): the force plans and Zhukovsky's lever.
 FORCE_SHEETS = ("forces", "lever")
 #: Sheets of the whole cycle: they need ``[drive] positions = N``.
-CYCLE_SHEETS = ("positions", "diagrams", "velocities", "dynamics", "startup")
+CYCLE_SHEETS = ("positions", "diagrams", "velocities", "dynamics", "startup", "shaking")
 #: Fewest and most positions of a cycle (``[drive] positions``): three chords at least for the
 #: graphical differentiation; one a degree at most (as MAX_POSITIONS).
 MIN_CYCLE_POSITIONS = 3
@@ -284,6 +285,7 @@ class Scene:
     turning: TurningSpec | None = None      # [turning]: a crank torque over a cycle (a flywheel problem alone)
     flywheel: FlywheelSpec | None = None    # [flywheel]: the flywheel of [turning] or [operation]
     operation: OperationSpec | None = None  # [operation]: punching, riveting (a flywheel problem alone)
+    counterweights: Mapping[str, CounterweightSpec] = field(default_factory=dict)  # link → its counterweight
 
     @property
     def train_only(self) -> bool:
