@@ -250,9 +250,11 @@ def _count(text: str, option: str, lo: int, hi: int) -> int:
 
 def _examples() -> list[Path]:
     """The bundled scenes: the linkages, then the gear trains (examples/gears), the rotors
-    (examples/balancing) and the flywheel problems without a linkage (examples/flywheel)."""
+    (examples/balancing), the flywheel problems without a linkage (examples/flywheel) and the
+    linkages drawing their shaking force (examples/shaking)."""
     out = []
-    for package in ("plans.examples", "plans.examples.gears", "plans.examples.balancing", "plans.examples.flywheel"):
+    for package in ("plans.examples", "plans.examples.gears", "plans.examples.balancing", "plans.examples.flywheel",
+                    "plans.examples.shaking"):
         root = resources.files(package)
         out += sorted(Path(str(p)) for p in root.iterdir() if p.name.endswith(".toml"))
     return out

@@ -162,7 +162,7 @@ def test_missing_file_is_reported(tmp_path, capsys):
 
 def test_demo_renders_packaged_examples(demo_rendered):
     """Every bundled scene: the linkages, the gear trains, the rotors and the flywheel problems."""
-    more = sorted(p.stem for sub in ("gears", "balancing", "flywheel") for p in (EXAMPLES[0].parent / sub).glob("*.toml"))
+    more = sorted(p.stem for sub in ("gears", "balancing", "flywheel", "shaking") for p in (EXAMPLES[0].parent / sub).glob("*.toml"))
     assert more and sorted(p.stem for p in demo_rendered.glob("*.json")) == sorted([p.stem for p in EXAMPLES] + more)
 
 
