@@ -9,19 +9,15 @@ Part of :mod:`plans.checking`; imports only the standard library and its own sib
 from __future__ import annotations
 
 import math
-import re
 import xml.etree.ElementTree as ET
 
+from .checking_read import _path_points
 from .checking_report import Check, SvgReport
 
 __all__ = ["area_checks", "TURNING"]
 
 TURNING = "turning"
 _SVG = "{http://www.w3.org/2000/svg}"
-
-
-def _points(d: str) -> list[tuple[float, float]]:
-    return [(float(a), float(b)) for a, b in re.findall(r"[ML]\s*([-+0-9.eE]+)\s*,\s*([-+0-9.eE]+)", d or "")]
 
 
 def area_checks(report: SvgReport, root: ET.Element, precision: float) -> None:
@@ -38,7 +34,7 @@ def area_checks(report: SvgReport, root: ET.Element, precision: float) -> None:
         for el in g.iter(f"{_SVG}path"):
             if el.get("data-area") is None:
                 continue
-            pts = _points(el.get("d"))
+            pts = _path_points(el.get("d"))
             try:
                 value = float(el.get("data-value"))
             except (TypeError, ValueError):

@@ -15,13 +15,14 @@ An involute pair's meshing sheet (:func:`contact_problems`): the pitch point P s
 detail (``data-pitch-point``) must lie on both working profiles drawn, within the rounding of
 the written points (P is a vertex of each profile).
 
-Imports only the standard library."""
+Imports only the standard library and its sibling :mod:`plans.checking_read` (reading a path's points)."""
 
 from __future__ import annotations
 
 import math
-import re
 import xml.etree.ElementTree as ET
+
+from .checking_read import _path_points
 
 __all__ = ["gear_problems"]
 
@@ -51,14 +52,6 @@ def _pole(group: ET.Element) -> tuple[float, float] | None:
     parts = (group.get("data-pole") or "").split()
     xy = [_float(p) for p in parts]
     return (xy[0], xy[1]) if len(xy) == 2 and None not in xy else None  # type: ignore[return-value]
-
-
-def _path_points(d: str) -> list[tuple[float, float]]:
-    """The points of a path written as M x,y L x,y … (plans' own polylines)."""
-    out = []
-    for part in re.findall(r"[ML]\s*([-+0-9.eE]+)\s*,\s*([-+0-9.eE]+)", d or ""):
-        out.append((float(part[0]), float(part[1])))
-    return out
 
 
 def _distance_to_polyline(p: tuple[float, float], pts: list[tuple[float, float]]) -> float:

@@ -101,3 +101,8 @@ def _line_data(line: ET.Element):
     if None in xy or value is None or theta is None or not all(math.isfinite(c) for c in xy + [value, theta]):
         return None
     return xy, value, math.radians(theta)
+
+
+def _path_points(d: str | None) -> list[tuple[float, float]]:
+    """The points of a path written as ``M x,y L x,y …`` (plans' own polylines and outlines)."""
+    return [(float(a), float(b)) for a, b in re.findall(r"[ML]\s*([-+0-9.eE]+)\s*,\s*([-+0-9.eE]+)", d or "")]

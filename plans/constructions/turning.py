@@ -98,10 +98,3 @@ def turning_diagram(a: TurningAnalysis) -> TurningDiagram:
                 ("min", float(a.energy_min_at), float(x(a.energy_min_at))))
     return TurningDiagram(mu_theta, mu_t, torque, resisting, tuple(areas), tuple(ords), theta_ticks, t_ticks,
                           lo / mu_t, hi / mu_t, float(x(a.period)), extremes)
-
-
-def polygon_area(points) -> float:
-    """The signed area of a closed outline (shoelace), mm² (counter-clockwise positive, y up)."""
-    pts = np.asarray(points, float)
-    x, y = pts[:, 0], pts[:, 1]
-    return 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))

@@ -18,6 +18,7 @@ from .marks import arrow
 from .sheet import FORMATS, TitleBlock, new_sheet, note_lines
 from .style import Style
 from .svg import Heading, _tag
+from .text import significant
 from .positions import width_of
 
 __all__ = ["draw_diagrams", "draw_graph", "time_axis", "LEFT_MM", "RIGHT_MM"]
@@ -28,11 +29,6 @@ RIGHT_MM = 14.0
 #: Room below the last graph for the time axis, and for the notes, mm.
 TIME_AXIS_MM = 16.0
 NOTES_MM = 14.0
-
-
-def _number(v: float) -> str:
-    s = f"{v:.6g}"
-    return s.replace("-", "−")
 
 
 def draw_diagrams(d: Diagrams, heading: Heading, *, ident: str, style: Style = Style(),
@@ -92,7 +88,7 @@ def draw_graph(dwg, canvas: Canvas, g: Graph, ident: str, style: Style, *, mu_x:
     del axis
     for k, (value, y) in enumerate(g.ticks):
         canvas.line(grp, (ox - 1.5, y), (ox, y), width=style.thin, stroke_width=thin, id=f"{ident}-yt{k}")
-        num = _number(value)
+        num = significant(value)
         canvas.text(texts, canvas.paper((ox - 2.5 - width_of(num, style.small_text), y - 0.9)), num,
                     size=style.small_text, ident=f"{ident}-ytn{k}")
     name = f"{g.symbol}, {g.unit}"
@@ -138,7 +134,7 @@ def time_axis(dwg, canvas: Canvas, length: float, ticks, last: Graph, ident: str
     arrow(canvas, g, (0.0, y), (x_end, y), style.colour, f"{ident}-time-head", style, of=f"{ident}-time-axis")
     for k, (t, x) in enumerate(ticks):
         canvas.line(g, (x, y), (x, y - 1.5), width=style.thin, stroke_width=fmt(style.thin, 3), id=f"{ident}-tt{k}")
-        num = _number(t)
+        num = significant(t)
         canvas.text(texts, canvas.paper((x - width_of(num, style.small_text) / 2, y - 4.5)), num,
                     size=style.small_text, ident=f"{ident}-ttn{k}")
     canvas.text(texts, canvas.paper((x_end + 1.5, y - 1.2)), "t, s", size=style.text, ident=f"{ident}-time-name")

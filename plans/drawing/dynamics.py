@@ -26,7 +26,7 @@ from .positions import width_of
 from .sheet import FORMATS, TitleBlock, new_sheet, note_lines
 from .style import Style
 from .svg import Heading, _tag
-from .text import wrap
+from .text import significant, wrap
 
 __all__ = ["draw_dynamics", "draw_startup"]
 
@@ -36,10 +36,6 @@ BETWEEN_MM = 34.0
 BELOW_MM = 14.0
 #: Room for the notes: this much per line, mm.
 NOTE_LINE_MM = 4.0
-
-
-def _number(v: float) -> str:
-    return f"{v:.6g}".replace("-", "−")
 
 
 def draw_dynamics(d: DynamicsDiagrams, heading: Heading, *, ident: str, style: Style = Style(),
@@ -112,7 +108,7 @@ def _wittenbauer(dwg, canvas: Canvas, w: Wittenbauer, at: tuple[float, float], i
     arrow(canvas, grp, p(0.0, 0.0), p(x_end, 0.0), style.colour, f"{ident}-ihead", style, of=f"{ident}-iaxis")
     for k, (value, y) in enumerate(w.t_ticks):
         canvas.line(grp, p(-1.5, y), p(0.0, y), width=style.thin, stroke_width=thin, id=f"{ident}-tt{k}")
-        num = _number(value)
+        num = significant(value)
         canvas.text(texts, canvas.paper(p(-2.5 - width_of(num, style.small_text), y - 0.9)), num,
                     size=style.small_text, ident=f"{ident}-ttn{k}")
     name = "ΔT, J"
@@ -126,7 +122,7 @@ def _wittenbauer(dwg, canvas: Canvas, w: Wittenbauer, at: tuple[float, float], i
     arrow(canvas, grp, p(0.0, ys), p(x_end, ys), style.colour, f"{ident}-iscale-head", style, of=f"{ident}-iscale")
     for k, (value, x) in enumerate(w.i_ticks):
         canvas.line(grp, p(x, ys), p(x, ys - 1.5), width=style.thin, stroke_width=thin, id=f"{ident}-it{k}")
-        num = _number(value)
+        num = significant(value)
         canvas.text(texts, canvas.paper(p(x - width_of(num, style.small_text) / 2, ys + 1.6)), num,
                     size=style.small_text, ident=f"{ident}-itn{k}")      # above: the turned I_r(φ) hangs below
     canvas.text(texts, canvas.paper(p(x_end + 1.5, ys - 1.2)), "I_r, kg·m²", size=style.text,

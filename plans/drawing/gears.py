@@ -20,7 +20,7 @@ from .scheme import _hatch, support
 from .sheet import FORMATS, TitleBlock, choose_format, new_sheet, note_lines
 from .style import Style
 from .svg import Heading
-from .text import runs, width
+from .text import runs, significant, width
 
 __all__ = ["draw_gears", "fits", "to_fit"]
 
@@ -115,7 +115,7 @@ def _table(dwg, canvas: Canvas, sheet: GearSheet, at: tuple[float, float], ident
     (an assignment) only those links' speeds are filled in, the rest left for the student."""
     header = ["link", "z", "n, rpm", "ω, rad/s"]
     rows = [header] + [[markup(r.name), "—" if r.teeth is None else str(r.teeth)]
-                       + ([_number(r.rpm, 6), _number(r.omega, 5)] if given is None or r.name in given else ["", ""])
+                       + ([significant(r.rpm, 6), significant(r.omega, 5)] if given is None or r.name in given else ["", ""])
                        for r in sheet.table]
     g = dwg.g(id=f"{ident}-table", stroke=style.colour, fill="none")
     g.attribs["class"] = "value-table"
@@ -143,11 +143,6 @@ def _table(dwg, canvas: Canvas, sheet: GearSheet, at: tuple[float, float], ident
             x += TABLE_COLUMNS_MM[k]
     dwg.add(g)
     dwg.add(texts)
-
-
-def _number(x: float, digits: int) -> str:
-    """A table entry: ``digits`` significant digits, a true minus sign."""
-    return "0" if x == 0.0 else f"{x:.{digits}g}".replace("-", "−")
 
 
 def fits(sheet: GearSheet) -> bool:

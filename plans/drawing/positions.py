@@ -29,7 +29,7 @@ from .scheme import block_corners, frame_guide, support
 from .sheet import FORMATS, TitleBlock, choose_format, new_sheet, note_lines
 from .style import Style
 from .svg import Heading, plan_layers
-from .text import box as text_box, runs, width
+from .text import box as text_box, runs, significant, width
 from .. import linalg as la
 
 __all__ = ["draw_positions", "draw_velocities", "PIN_MM", "NOTE_ROOM_MM", "TICK_MM", "LABEL_NEAR_MM"]
@@ -249,14 +249,6 @@ def _increasing(y: np.ndarray) -> np.ndarray:
     return np.concatenate([np.full(int(c), m) for m, c in blocks])
 
 
-def _number(x: float, digits: int = 4) -> str:
-    """A table entry: ``digits`` significant digits, no exponent for ordinary values."""
-    if x == 0.0:
-        return "0"
-    s = f"{x:.{digits}g}"
-    return s.replace("-", "−")
-
-
 def draw_velocities(sheet: VelocitiesSheet, heading: Heading, *, ident: str, style: Style = Style()) -> str:
     """SVG text of every position's velocity plan and the table of values (see the module)."""
     f = FORMATS[2]
@@ -279,7 +271,7 @@ def _table(dwg, canvas: Canvas, sheet: VelocitiesSheet, ident: str, style: Style
     t = sheet.table
     size = style.small_text
     header = [f"{sym}, {unit}" if unit else sym for sym, unit in t.columns]
-    cells = [[f"{int(r[0])}", f"{r[1]:.4g}"] + [_number(v) for v in r[2:]] for r in t.rows]
+    cells = [[f"{int(r[0])}", f"{r[1]:.4g}"] + [significant(v, 4) for v in r[2:]] for r in t.rows]
     widths = [max(width_of(h, size) for h in [header[k]] + [row[k] for row in cells]) + 4.0
               for k in range(len(header))]
     total = sum(widths)

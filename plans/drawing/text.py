@@ -72,6 +72,12 @@ def minus_signs(text: str) -> str:
     return _NEGATIVE.sub("−", text)
 
 
+def significant(x: float, digits: int = 6) -> str:
+    """``x`` to ``digits`` significant digits as the sheets write numbers: the minus sign U+2212,
+    and a zero of either sign as ``0``."""
+    return "0" if x == 0.0 else f"{x:.{digits}g}".replace("-", "−")
+
+
 def plain(label: str) -> str:
     """A label's characters without markup (``φ_1`` → ``φ1``)."""
     return "".join(r.text for r in runs(label))

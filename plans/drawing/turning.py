@@ -18,16 +18,13 @@ from .positions import width_of
 from .sheet import FORMATS, TitleBlock, new_sheet, note_lines
 from .style import Style
 from .svg import Heading, _tag
+from .text import significant
 
 __all__ = ["draw_turning"]
 
 TEXT_MM = 2.8
 LEAD_MM = 4.4
 _FILL = {True: "#eef6ea", False: "#fcefed"}     # pale: shading, not ink
-
-
-def _n(v: float, digits: int = 5) -> str:
-    return f"{v:.{digits}g}".replace("-", "−")
 
 
 def draw_turning(d: TurningDiagram, a: TurningAnalysis, heading: Heading, *, ident: str, style: Style = Style(),
@@ -51,7 +48,7 @@ def draw_turning(d: TurningDiagram, a: TurningAnalysis, heading: Heading, *, ide
         el.attribs["data-area"] = str(ar.number)
         el.attribs["data-value"] = repr(ar.energy)
         sign = "+" if ar.energy >= 0 else "−"
-        canvas.label(labels, ar.label_at, f"{sign}A_{{{ar.number}}} = {_n(abs(ar.energy))} J", size=style.small_text + 0.5,
+        canvas.label(labels, ar.label_at, f"{sign}A_{{{ar.number}}} = {significant(abs(ar.energy), 5)} J", size=style.small_text + 0.5,
                      prefer=(0.0, 1.0 if ar.energy >= 0 else -1.0), ident=f"{ident}-al{ar.number}", digits=False,
                      near=0.5)
     # axes
@@ -66,12 +63,12 @@ def draw_turning(d: TurningDiagram, a: TurningAnalysis, heading: Heading, *, ide
     canvas.text(texts, canvas.paper((end + 1.5, -1.2)), "θ, °", size=style.text, ident=f"{ident}-xname")
     for k, (v, y) in enumerate(d.t_ticks):
         canvas.line(g, (-1.5, y), (0.0, y), width=style.thin, stroke_width=thin, id=f"{ident}-tt{k}")
-        canvas.text(texts, canvas.paper((-2.5 - width_of(_n(v), style.small_text), y - 0.9)), _n(v),
+        canvas.text(texts, canvas.paper((-2.5 - width_of(significant(v, 5), style.small_text), y - 0.9)), significant(v, 5),
                     size=style.small_text, ident=f"{ident}-ttn{k}")
     below = d.low - 5.0
     for k, (deg, x) in enumerate(d.theta_ticks):
         canvas.line(g, (x, -0.8), (x, 0.8), width=style.thin, stroke_width=thin, id=f"{ident}-xt{k}")
-        canvas.text(texts, canvas.paper((x - width_of(_n(deg), style.small_text) / 2, below)), _n(deg),
+        canvas.text(texts, canvas.paper((x - width_of(significant(deg, 5), style.small_text) / 2, below)), significant(deg, 5),
                     size=style.small_text, ident=f"{ident}-xtn{k}")
     # the curves
     canvas.polyline(g, d.torque, width=style.vector, stroke=style.vector_colour, stroke_width=vec, id=f"{ident}-T")
@@ -95,7 +92,7 @@ def draw_turning(d: TurningDiagram, a: TurningAnalysis, heading: Heading, *, ide
     for which, deg, x in d.extremes:
         canvas.line(g, (x, d.low - 2.0), (x, d.high + 4.0), width=style.thin, stroke=style.construction_colour,
                     stroke_width=thin, stroke_dasharray="4 1.5 1 1.5", id=f"{ident}-w{which}")
-        canvas.label(labels, (x, d.high + 4.0), f"ω_{{{which}}} ({_n(deg, 4)}°)", size=style.small_text + 0.5,
+        canvas.label(labels, (x, d.high + 4.0), f"ω_{{{which}}} ({significant(deg, 4)}°)", size=style.small_text + 0.5,
                      prefer=(0.0, 1.0), ident=f"{ident}-wl{which}", digits=False)
     g.add(labels)
     dwg.add(g)
@@ -117,8 +114,8 @@ def _table(canvas: Canvas, texts, a: TurningAnalysis, at: tuple[float, float], i
         if c <= 0.0:
             continue
         mark = "max (ω_max)" if c == a.energy_max_at else "min (ω_min)" if c == a.energy_min_at else ""
-        rows.append((_n(float(c), 5), _n(float(e), 6), mark))
-    rows.append(("ΔE_max", _n(a.energy_fluctuation, 6), "= E_max − E_min"))
+        rows.append((significant(float(c), 5), significant(float(e), 6), mark))
+    rows.append(("ΔE_max", significant(a.energy_fluctuation, 6), "= E_max − E_min"))
     for r, row in enumerate(rows):
         for c, cell in enumerate(row):
             canvas.text(texts, canvas.paper((x0 + (0.0, 18.0, 38.0)[c], y0 - LEAD_MM * r)), cell, size=TEXT_MM,

@@ -152,7 +152,6 @@ def _reading(machine: MachineDynamics, d: DynamicsDiagrams) -> float:
 
 def _scales(d: DynamicsDiagrams) -> str:
     m, a, t, i = d.graphs
-    w = d.wittenbauer
     return (f"μ_φ = {d.mu_phi:g} rad/mm; μ_M = {m.mu:g} N·m/mm; μ_A = {a.mu:.4g} J/mm (H = {d.pole:g} mm); "
             f"μ_ΔT = {t.mu:g} J/mm and μ_I = {i.mu:g} kg·m²/mm, Wittenbauer's too (by projection; I_r(φ) turned, "
             f"μ_φ = {d.mu_phi_turned:g} rad/mm)")
