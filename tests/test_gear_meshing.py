@@ -24,7 +24,7 @@ from plans.scene import read_scene
 
 SVG = "{http://www.w3.org/2000/svg}"
 #: The pair examples drawing a meshing sheet.
-MESHING = ("pair_12_no_undercut", "pair_balanced", "pair_from_train")
+MESHING = ("pair_12_no_undercut", "pair_balanced", "pair_from_train", "pair_internal", "pair_rack")
 
 
 def _analysis(stem: str):
@@ -65,9 +65,9 @@ def test_the_sliding_ordinates_are_the_reports(demo_rendered, stem):
     exact = {"λ1:B2": report["specific_sliding"]["wheel1_at_B2"], "λ2:B1": report["specific_sliding"]["wheel2_at_B1"]}
     a = _analysis(stem)
     p = a.pair
-    g_ = [math.sqrt((da / 2) ** 2 - (db / 2) ** 2) for da, db in zip(p.da, p.db)]
-    l1, l2 = specific_sliding(a, np.array([g_[0]]))          # at B1
-    m1, m2 = specific_sliding(a, np.array([p.line - g_[1]]))   # at B2
+    pn1 = p.dw[0] / 2 * math.sin(p.alpha_w)
+    l1, l2 = specific_sliding(a, np.array([pn1 + p.recess]))     # at B1
+    m1, m2 = specific_sliding(a, np.array([pn1 - p.approach]))   # at B2
     exact.update({"λ1:B1": float(l1[0]), "λ2:B2": float(m2[0])})
     assert float(m1[0]) == pytest.approx(exact["λ1:B2"], rel=1e-12)
     for q, value in exact.items():
@@ -91,3 +91,46 @@ def test_check_fails_a_pair_that_does_not_touch_at_p(demo_rendered, tmp_path):
     bad.write_text(ET.tostring(root, encoding="unicode"), encoding="utf-8")
     problems = inspect_svg(bad).problems
     assert any("working profile of wheel 2" in q for q in problems), problems
+
+
+@pytest.mark.parametrize("stem", ("pair_balanced", "pair_internal", "pair_rack"))
+def test_the_mate_fills_the_pinions_spaces_on_the_rolling_circles(stem):
+    """Without backlash, wheel 2's teeth fill wheel 1's spaces where the two roll: measured on the
+    drawn outlines (wheel 1 cut by the simulated rack, wheel 2 an external wheel so cut, a ring or
+    a rack), the arc each tooth of wheel 2 covers on its working circle (a rack's: its pitch line)
+    equals the arc of wheel 1's space on its working circle, and the two pitches agree."""
+    a = _analysis(stem)
+    p = a.pair
+    s = meshing(a)
+    k = s.k
+    polys = {}
+    for name, pts in s.outlines:
+        polys.setdefault(name.split("-")[0], []).append(shapely.Polygon(pts))
+    w1, w2 = (shapely.union_all(polys[n]) for n in ("wheel1", "wheel2"))
+
+    def chords(poly, circle):
+        inside = poly.intersection(circle)
+        parts = getattr(inside, "geoms", [inside])
+        return sorted(g.length for g in parts if g.length > 0.2 * p.module * k)
+
+    def arc(centre, radius, span, mid=0.0):
+        t = np.linspace(mid - span, mid + span, 20001)
+        return shapely.LineString(np.column_stack([centre[0] + radius * np.sin(t), centre[1] + radius * np.cos(t)]))
+
+    rw1 = p.dw[0] / 2 * k
+    teeth1 = chords(w1, arc((0.0, -rw1), rw1, 1.6 * 2 * math.pi / p.z[0]))
+    pitch1 = math.pi * p.dw[0] / p.z[0] * k
+    if p.kind == "rack":
+        teeth2 = chords(w2, shapely.LineString([(-2.2 * p.p * k, 0.0), (2.2 * p.p * k, 0.0)]))
+        pitch2 = p.p * k
+    else:
+        rw2 = p.dw[1] / 2 * k
+        centre, mid = ((0.0, rw2), math.pi) if p.kind == "external" else ((0.0, -rw2), 0.0)
+        teeth2 = chords(w2, arc(centre, rw2, 1.6 * 2 * math.pi / p.z[1], mid))
+        pitch2 = math.pi * p.dw[1] / p.z[1] * k
+    assert pitch1 == pytest.approx(pitch2, rel=1e-12)
+    # chords along a polyline of 20001 points: arcs within (span/20000)²·r/8, far below the cut's tolerance
+    tol = 10 * CUT_TOLERANCE * k + 1e-6
+    space1 = pitch1 - teeth1[len(teeth1) // 2]
+    tooth2 = teeth2[len(teeth2) // 2]
+    assert tooth2 == pytest.approx(space1, abs=2 * tol)

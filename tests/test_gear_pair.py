@@ -162,11 +162,11 @@ def pair_sheets(tmp_path_factory):
     return out
 
 
-def test_four_pair_examples_draw_their_sheets(pair_sheets):
+def test_the_pair_examples_draw_their_sheets(pair_sheets):
     names = {p.name for p in pair_sheets.glob("*.svg")}
-    assert len(PAIR_EXAMPLES) == 4
+    assert len(PAIR_EXAMPLES) == 6
     assert "pair_12_unshifted-cutting.svg" in names and "pair_12_unshifted-meshing.svg" not in names
-    for stem in ("pair_12_no_undercut", "pair_balanced", "pair_from_train"):
+    for stem in ("pair_12_no_undercut", "pair_balanced", "pair_from_train", "pair_internal", "pair_rack"):
         assert {f"{stem}-meshing.svg", f"{stem}-cutting.svg"} <= names
     assert "pair_from_train-gears.svg" in names
 
@@ -183,7 +183,8 @@ def test_pair_sheets_pass_plans_check_and_read_the_contact_ratio(pair_sheets):
             measured = by["B1B2"].length_mm / by["pb"].length_mm
             assert measured == pytest.approx(rep["contact_ratio"], abs=2e-4)
             assert any(c.what.startswith("ε_α") and c.ok for c in r.checks)
-            assert {"aw", "ra1", "ra2", "rb1", "rb2", "s1", "s2", "sa1", "sa2"} <= set(by)
+            radii = {"ra1", "rb1"} | ({"ra2", "rb2"} if rep["kind"] != "rack" else set())
+            assert radii | {"aw", "s1", "s2", "sa1", "sa2"} <= set(by)
             assert by["aw"].value == pytest.approx(rep["centre_distance"], rel=1e-15)
 
 

@@ -83,8 +83,8 @@ def test_khurmi_pinion_and_rack():
     assert rep["da"][1] is None and rep["line_of_action"] is None and rep["x_min"][1] is None
     assert rep["centre_distance"] == pytest.approx(r, rel=REL) and rep["working_pressure_angle"] == pytest.approx(
         math.degrees(phi), rel=REL)
-    assert files == ["pair.json"]
-    assert any("sheets of a rack are not drawn yet" in w for w in warnings)
+    assert files == ["pair-cutting.svg", "pair-meshing.svg", "pair.json"]
+    assert not any("not drawn" in w for w in warnings)
     # the book's angle rounded down to 18.43° puts the rack's tip line just past N1: refused
     e = _refusal({"z1": 20, "module": m, "rack": True, "pressure_angle": 18.43})
     assert str(e).startswith("[gear_pair]: interference: the tip line of the rack") and "\n" not in str(e)
@@ -198,8 +198,8 @@ def test_standard_internal_pair_report():
     assert s["wheel1_at_B2"] == pytest.approx((w1 * (g2 - n1n2) - w2 * g2) / (w1 * (g2 - n1n2)), rel=1e-11)
     assert s["wheel2_at_B1"] == pytest.approx((w2 * (g1 + n1n2) - w1 * g1) / (w2 * (g1 + n1n2)), rel=1e-11)
     assert rep["x_min"][1] is None and rep["undercut"] == [False, False]
-    assert files == ["pair.json"]
-    assert any("meshing and cutting sheets of an internal pair are not drawn yet" in w for w in warnings)
+    assert files == ["pair-cutting.svg", "pair-meshing.svg", "pair.json"]
+    assert not any("not drawn" in w for w in warnings)
 
 
 def test_shifted_internal_pair_of_the_gear_handbooks():

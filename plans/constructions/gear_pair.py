@@ -31,104 +31,18 @@ lines (arrows at both ends, their values written).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
 
 import numpy as np
 import shapely
 
 from ..gears.pair import PairAnalysis
 from .gear_cutting import cut_wheel, cutter_tooth, flank_angle
+from .gear_mates import rack_centre, rack_outline, ring_outline, ring_space_half
+from .gear_views import overview, sliding_diagram, specific_sliding
+from .pair_sheet import (CUT_TOLERANCE, ENLARGEMENTS, MESHING_MM, MODULE_MM, RIM, PairSheet, Tag, arc,
+                         outlines, scale_for, turned)
 
 __all__ = ["PairSheet", "Tag", "meshing", "cutting", "contact_turns", "specific_sliding", "ENLARGEMENTS", "MODULE_MM"]
-
-#: Enlargement scales k:1 of the detail, and reductions k0:1 (k0 < 1) of the general view.
-ENLARGEMENTS = (1.0, 2.0, 2.5, 4.0, 5.0, 10.0, 20.0, 25.0, 40.0, 50.0, 100.0)
-REDUCTIONS = (1.0, 0.5, 0.4, 0.25, 0.2, 0.1, 0.05, 0.04, 0.025, 0.02, 0.01)
-#: The module on paper is at least this, mm.
-MODULE_MM = 8.0
-#: The general view's largest height, mm.
-OVERVIEW_MM = 110.0
-#: The cut is within this of the exact profile, mm of the wheel (far below the paper's 0.0005 mm/k).
-CUT_TOLERANCE = 1e-4
-
-
-@dataclass(frozen=True)
-class Tag:
-    """A measured segment: ``group`` ("detail", "overview" or "sliding"), ``quantity``, ``value``
-    (mm of the wheel; a specific sliding's |λ| in the ``sliding`` group), paper ends ``a``,
-    ``b``, and the names of its ends."""
-
-    group: str
-    quantity: str
-    value: float
-    a: tuple[float, float]
-    b: tuple[float, float]
-    ends: tuple[str, str]
-
-
-@dataclass
-class PairSheet:
-    """Paper geometry: ``k`` (detail) and ``k0`` (general view, 0 when none); ``outlines``
-    (name, closed polylines), ``curves`` (name, kind "thin" | "dash" | "thick" | "thickdash" |
-    "arc" | "axis", polyline), ``tags``, ``points`` (name, xy) marked with a dot and labelled, ``labels`` (text,
-    anchor, preferred direction) and the ``notes``' values."""
-
-    k: float
-    k0: float = 0.0
-    mu_sliding: float = 0.0                 # μλ of the specific-sliding diagram, 1/mm (0: none)
-    dimensions: bool = False                # the tags drawn as dimension lines (arrows both ends, values)
-    outlines: list[tuple[str, np.ndarray]] = field(default_factory=list)
-    curves: list[tuple[str, str, np.ndarray]] = field(default_factory=list)
-    tags: list[Tag] = field(default_factory=list)
-    points: list[tuple[str, tuple[float, float]]] = field(default_factory=list)
-    labels: list[tuple[str, tuple[float, float], tuple[float, float]]] = field(default_factory=list)
-
-    def bounds(self) -> tuple[float, float, float, float]:
-        pts = [p for _, o in self.outlines for p in o] + [p for _, _, c in self.curves for p in c] + \
-            [t.a for t in self.tags] + [t.b for t in self.tags] + [p for _, p in self.points]
-        a = np.array(pts, float)
-        return float(a[:, 0].min()), float(a[:, 1].min()), float(a[:, 0].max()), float(a[:, 1].max())
-
-
-#: The detail's largest width and height on the sheet, mm (the general view and notes beside it;
-#: the meshing detail leaves room below it for the specific-sliding diagram).
-DETAIL_MM = (250.0, 185.0)
-MESHING_MM = (250.0, 135.0)
-#: The largest ordinate of the specific-sliding diagram, mm, and the mantissas of μλ.
-SLIDING_MM = 30.0
-SLIDING_SERIES = (1.0, 2.0, 2.5, 4.0, 5.0)
-
-
-def _scale_for(m: float, size: tuple[float, float] | None = None, room: tuple[float, float] = DETAIL_MM) -> float:
-    """The detail's enlargement: the largest of the series that keeps the detail (``size`` at
-    1:1, mm) within :data:`DETAIL_MM`, and at least the smallest that draws the module ≥
-    :data:`MODULE_MM` long."""
-    least = next((k for k in ENLARGEMENTS if m * k >= MODULE_MM - 1e-9), ENLARGEMENTS[-1])
-    if size is None:
-        return least
-    fits = [k for k in ENLARGEMENTS if k >= least and size[0] * k <= room[0] and size[1] * k <= room[1]]
-    return max(fits) if fits else least
-
-
-def _arc(centre: np.ndarray, radius: float, a0: float, a1: float, n: int = 181) -> np.ndarray:
-    """Points of a circle's arc, the angles clockwise from +y (rad)."""
-    a = np.linspace(a0, a1, n)
-    return np.column_stack([centre[0] + radius * np.sin(a), centre[1] + radius * np.cos(a)])
-
-
-def _turned(pts: np.ndarray, clockwise: float, scale: float, centre: np.ndarray) -> np.ndarray:
-    c, s = math.cos(clockwise), math.sin(clockwise)
-    x, y = pts[:, 0], pts[:, 1]
-    return np.column_stack([x * c + y * s, -x * s + y * c]) * scale + centre
-
-
-def _outlines(poly) -> list[np.ndarray]:
-    geoms = getattr(poly, "geoms", [poly])
-    return [np.array(g.exterior.coords) for g in geoms if not g.is_empty and g.geom_type == "Polygon"]
-
-
-#: The rim drawn below the root circle, modules.
-RIM = 1.2
 
 
 def _wheel(a: PairAnalysis, i: int, spaces: int, first: int):
@@ -146,46 +60,95 @@ def meshing(a: PairAnalysis, k: float | None = None) -> PairSheet:
     p = a.pair
     if k is None:
         x0, y0, x1, y1 = _detail(a, 1.0).bounds()
-        k = _scale_for(p.module, (x1 - x0, y1 - y0), MESHING_MM)
+        k = scale_for(p.module, (x1 - x0, y1 - y0), MESHING_MM)
     sheet = _detail(a, k)
-    _sliding(sheet, a)
-    _overview(sheet, a)
+    sliding_diagram(sheet, a)
+    overview(sheet, a)
     return sheet
 
 
 def contact_turns(a: PairAnalysis) -> tuple[float, float]:
-    """The clockwise turns (rad) of wheels 1 and 2 that put the left flank of each one's space 0
-    through P: wheel 1 by β1(r_w1), wheel 2 by π + β2(r_w2) (:func:`flank_angle`)."""
+    """Where each wheel stands so that one pair of profiles touches at P: wheel 1 turned clockwise
+    by β1(r_w1), the left flank of its space 0 through P (:func:`flank_angle`); wheel 2 turned by
+    π + β2(r_w2) (an external wheel, the same flank), or the clockwise angle −ψ(r_w2) of the ring's
+    space 0, whose right flank passes through P (:func:`.gear_mates.ring_space_half`), or the
+    centre u0 (mm) of the rack's tooth whose left flank does (:func:`.gear_mates.rack_centre`)."""
     p = a.pair
-    b = [float(flank_angle(np.array([p.dw[i] / 2.0]), p.module, p.z[i], p.alpha, p.x[i])[0]) for i in (0, 1)]
-    return b[0], math.pi + b[1]
+    b1 = float(flank_angle(np.array([p.dw[0] / 2.0]), p.module, p.z[0], p.alpha, p.x[0])[0])
+    if p.kind == "rack":
+        return b1, rack_centre(p.module, p.alpha, p.x[0])
+    if p.kind == "internal":
+        return b1, -float(ring_space_half(p.dw[1] / 2.0, p.module, p.z[1], p.alpha, p.x[1]))
+    return b1, math.pi + float(flank_angle(np.array([p.dw[1] / 2.0]), p.module, p.z[1], p.alpha, p.x[1])[0])
+
+
+def _mate(a: PairAnalysis, k: float, o2: np.ndarray | None, turn: float) -> list[np.ndarray]:
+    """Wheel 2's outlines on paper: an external wheel cut by the rack, a ring gear or a rack
+    (:mod:`.gear_mates`)."""
+    p = a.pair
+    if p.kind == "rack":
+        tips = p.addenda[1] if p.addenda is not None else p.addendum
+        return [rack_outline(p.module, p.alpha, p.x[0], tips, p.addendum, p.clearance, RIM * p.module) * k]
+    if p.kind == "internal":
+        ring = ring_outline(p.module, p.z[1], p.alpha, p.x[1], p.da[1], p.df[1], RIM * p.module,
+                            turn - 2.0 * 2.0 * math.pi / p.z[1], through=p.dw[1] / 2.0)
+        return [turned(o, 0.0, k, o2) for o in outlines(ring)]
+    return [turned(o, turn, k, o2) for o in outlines(_wheel(a, 1, 5, -2))]
+
+
+def _circles(sheet: PairSheet, a: PairAnalysis, o1: np.ndarray, o2: np.ndarray | None, turn2: float) -> None:
+    """The circles of each wheel over the teeth drawn (a rack's lines: reference, pitch, tip, root)."""
+    p = a.pair
+    k = sheet.k
+    names = (("reference", "dash"), ("base", "thin"), ("tip", "thin"), ("root", "thin"), ("working", "dash"))
+    tau1 = 2.0 * math.pi / p.z[0]
+    for name, kind in names:
+        d = {"reference": p.d, "base": p.db, "tip": p.da, "root": p.df, "working": p.dw}[name]
+        sheet.curves.append((f"{name}1", kind, arc(o1, d[0] / 2.0 * k, -2.6 * tau1, 2.6 * tau1)))
+    if p.kind == "rack":
+        m, tips = p.module, (p.addenda[1] if p.addenda is not None else p.addendum)
+        u0, w = turn2, 2.6 * p.p
+        for name, y, kind in (("reference2", p.x[0] * m, "dash"), ("tip2", (p.x[0] - tips) * m, "thin"),
+                              ("root2", (p.x[0] + p.addendum + p.clearance) * m, "thin")):
+            sheet.curves.append((name, kind, np.array([[u0 - w, y], [u0 + w, y]]) * k))
+        return
+    tau2 = 2.0 * math.pi / p.z[1]
+    mid = 0.0 if p.kind == "internal" else math.pi
+    for name, kind in names:
+        d = {"reference": p.d, "base": p.db, "tip": p.da, "root": p.df, "working": p.dw}[name]
+        if name == "base" and p.kind == "internal":
+            continue                                   # far inside the ring's teeth, near its centre
+        sheet.curves.append((f"{name}2", kind, arc(o2, d[1] / 2.0 * k, mid - 2.6 * tau2, mid + 2.6 * tau2)))
 
 
 def _detail(a: PairAnalysis, k: float) -> PairSheet:
     p = a.pair
     sheet = PairSheet(k=k)
     rw = [v / 2.0 for v in p.dw]
-    o1, o2 = np.array([0.0, -rw[0] * k]), np.array([0.0, rw[1] * k])
-    tau = [2.0 * math.pi / z for z in p.z]
+    o1 = np.array([0.0, -rw[0] * k])
+    o2 = None if p.kind == "rack" else np.array([0.0, (rw[1] if p.kind == "external" else -rw[1]) * k])
+    tau = [2.0 * math.pi / z if z else 0.0 for z in p.z]
     turns = contact_turns(a)
-    for j, o in enumerate(_outlines(_wheel(a, 0, 5, -2))):
-        sheet.outlines.append((f"wheel1-{j}" if j else "wheel1", _turned(o, turns[0], k, o1)))
-    for j, o in enumerate(_outlines(_wheel(a, 1, 5, -2))):
-        sheet.outlines.append((f"wheel2-{j}" if j else "wheel2", _turned(o, turns[1], k, o2)))
-    # the circles of each wheel over the teeth drawn
-    spans = ((o1, 0.0, 2.6 * tau[0]), (o2, math.pi, 2.6 * tau[1]))
-    for i, (centre, mid, half) in enumerate(spans):
-        for name, d, kind in (("reference", p.d[i], "dash"), ("base", p.db[i], "thin"), ("tip", p.da[i], "thin"),
-                              ("root", p.df[i], "thin"), ("working", p.dw[i], "dash")):
-            sheet.curves.append((f"{name}{i + 1}", kind, _arc(centre, d / 2.0 * k, mid - half, mid + half)))
+    for j, o in enumerate(outlines(_wheel(a, 0, 5, -2))):
+        sheet.outlines.append((f"wheel1-{j}" if j else "wheel1", turned(o, turns[0], k, o1)))
+    for j, o in enumerate(_mate(a, k, o2, turns[1])):
+        sheet.outlines.append((f"wheel2-{j}" if j else "wheel2", o))
+    _circles(sheet, a, o1, o2, turns[1])
     # the line of action, its active part, the base pitch along it
     u = np.array([math.cos(p.alpha_w), math.sin(p.alpha_w)])
-    n1 = -u * rw[0] * math.sin(p.alpha_w) * k
-    n2 = u * rw[1] * math.sin(p.alpha_w) * k
-    g = [math.sqrt(max((da / 2) ** 2 - (db / 2) ** 2, 0.0)) for da, db in zip(p.da, p.db)]
-    b1 = n1 + u * g[0] * k
-    b2 = n2 - u * g[1] * k
-    sheet.curves.append(("line-of-action", "thin", np.array([n1, n2])))
+    pn1 = rw[0] * math.sin(p.alpha_w)
+    n1 = -u * pn1 * k
+    b2, b1 = -u * p.approach * k, u * p.recess * k
+    ends = [n1, b1 + u * 4.0]
+    if p.kind == "external":
+        n2 = u * rw[1] * math.sin(p.alpha_w) * k
+        ends[1] = n2
+    elif p.kind == "internal":
+        n2 = -u * rw[1] * math.sin(p.alpha_w) * k
+        ends[0] = n2
+    if p.kind == "rack" and p.approach > pn1:
+        ends[0] = b2 - u * 4.0
+    sheet.curves.append(("line-of-action", "thin", np.array(ends)))
     reach = float(np.hypot(*n1)) + 6.0
     sheet.curves.append(("tangent", "dash", np.array([[-reach, 0.0], [max(3.0 * p.module * k, 12.0), 0.0]])))
     sheet.curves.append(("centres", "axis", np.array([[0.0, -2.2 * p.module * k - 12.0],
@@ -198,115 +161,100 @@ def _detail(a: PairAnalysis, k: float) -> PairSheet:
         q = b2 + u * p.pb * k * j
         nrm = np.array([-u[1], u[0]]) * 1.5
         sheet.curves.append((f"pb-tick{j}", "thin", np.array([q - nrm, q + nrm])))
-    sheet.points += [("N_1", tuple(n1)), ("N_2", tuple(n2)), ("B_1", tuple(b1)), ("B_2", tuple(b2)), ("P", (0.0, 0.0))]
-    # the pair in contact at P: its working profiles, from the radius where contact begins on them
-    # (|O1B2|, |O2B1|) to the tip, each sampled at r_w too (P is a vertex of both)
-    lower = (float(np.hypot(*(b2 - o1))) / k, float(np.hypot(*(b1 - o2))) / k)
-    for i, (centre, turn, begin) in enumerate(((o1, turns[0], b2), (o2, turns[1], b1))):
-        rs = np.unique(np.append(np.linspace(lower[i], p.da[i] / 2, 60), rw[i]))
-        beta = -flank_angle(rs, p.module, p.z[i], p.alpha, p.x[i])
-        pts = _turned(np.column_stack([rs * np.sin(beta), rs * np.cos(beta)]), turn, k, centre)
-        sheet.curves.append((f"working-profile{i + 1}", "thick", pts))
-        # the beginning of the working profile carried from B2 (B1) by an arc about its centre
-        start = pts[0]
-        a0 = math.atan2(begin[0] - centre[0], begin[1] - centre[1])
-        a1 = math.atan2(start[0] - centre[0], start[1] - centre[1])
-        a1 = a0 + (a1 - a0 + math.pi) % (2.0 * math.pi) - math.pi         # the short way round
-        sheet.curves.append((f"working-start{i + 1}", "thin", _arc(centre, lower[i] * k, a0, a1, 40)))
-    # the arc of action on each working circle: the turn while the profile runs from B2 to B1
-    pb2, pb1 = float(np.hypot(*b2)) / k, float(np.hypot(*b1)) / k
+    sheet.points += [("N_1", tuple(n1))] + ([("N_2", tuple(n2))] if p.kind != "rack" else []) + \
+        [("B_1", tuple(b1)), ("B_2", tuple(b2)), ("P", (0.0, 0.0))]
+    _working_profiles(sheet, a, o1, o2, turns, b1, b2)
+    # the arc of action on each working circle (a rack: on its pitch line): the turn while the
+    # profile runs from B2 to B1
     rb = [d / 2.0 for d in p.db]
-    for i, (centre, mid, before, after) in enumerate(((o1, 0.0, -pb2 / rb[0], pb1 / rb[0]),
-                                                      (o2, math.pi, -pb1 / rb[1], pb2 / rb[1]))):
-        sheet.curves.append((f"arc-of-action{i + 1}", "arc", _arc(centre, rw[i] * k, mid + before, mid + after, 60)))
+    sheet.curves.append(("arc-of-action1", "arc", arc(o1, rw[0] * k, -p.approach / rb[0], p.recess / rb[0], 60)))
+    if p.kind == "rack":
+        c = math.cos(p.alpha)
+        sheet.curves.append(("arc-of-action2", "arc", np.array([[-p.approach / c * k, 0.0], [p.recess / c * k, 0.0]])))
+    else:
+        mid, sense = (math.pi, 1.0) if p.kind == "external" else (0.0, 1.0)
+        sheet.curves.append(("arc-of-action2", "arc", arc(o2, rw[1] * k, mid - sense * (p.recess if mid else
+                                                                                           p.approach) / rb[1],
+                                                           mid + sense * (p.approach if mid else p.recess) / rb[1],
+                                                           60)))
     radius = 0.6 * float(np.hypot(*n1))
     sheet.curves.append(("alpha-w", "thin", np.array([[-radius * math.cos(t), -radius * math.sin(t)]
                                                        for t in np.linspace(0.0, p.alpha_w, 30)])))
     mid_a = 0.5 * p.alpha_w
     sheet.labels.append(("α_{w}", (-radius * math.cos(mid_a), -radius * math.sin(mid_a)), (-0.3, -1.0)))
-    # chordal tooth thicknesses, on teeth clear of P: wheel 1's second tooth left of P, wheel 2's
-    # second tooth right of it
-    for i, (centre, mid) in enumerate(((o1, turns[0] - 1.5 * tau[0]), (o2, turns[1] - 1.5 * tau[1]))):
+    _thicknesses(sheet, a, o1, o2, turns, tau)
+    return sheet
+
+
+def _working_profiles(sheet: PairSheet, a: PairAnalysis, o1: np.ndarray, o2: np.ndarray | None,
+                      turns: tuple[float, float], b1: np.ndarray, b2: np.ndarray) -> None:
+    """The pair in contact at P drawn thick: each profile from where contact begins or ends on it
+    (carried from B2 or B1 by a thin arc about its centre; a rack's by a line, it translates) to
+    its tip, sampled at r_w too (P is a vertex of both)."""
+    p = a.pair
+    k = sheet.k
+    rw = p.dw[0] / 2.0
+    low1 = float(np.hypot(*(b2 - o1))) / k
+    rs = np.unique(np.append(np.linspace(low1, p.da[0] / 2, 60), rw))
+    beta = -flank_angle(rs, p.module, p.z[0], p.alpha, p.x[0])
+    one = turned(np.column_stack([rs * np.sin(beta), rs * np.cos(beta)]), turns[0], k, o1)
+    sheet.curves.append(("working-profile1", "thick", one))
+    sheet.curves.append(("working-start1", "thin", _carried(o1, b2, one[0], low1 * k)))
+    if p.kind == "rack":
+        t = math.tan(p.alpha)
+        ys = np.unique(np.append(np.linspace(b2[1] / k, b1[1] / k, 60), 0.0))
+        two = np.column_stack([-ys * t, ys]) * k
+        sheet.curves.append(("working-profile2", "thick", two))
+        sheet.curves.append(("working-start2", "thin", np.array([b1, two[-1]])))
+        return
+    rw2 = p.dw[1] / 2.0
+    far = float(np.hypot(*(b1 - o2))) / k
+    if p.kind == "internal":                         # from the ring's tip (B2) out to where B1 meets it
+        rs = np.unique(np.append(np.linspace(p.da[1] / 2, far, 60), rw2))
+        beta = turns[1] + ring_space_half(rs, p.module, p.z[1], p.alpha, p.x[1])
+        two = turned(np.column_stack([rs * np.sin(beta), rs * np.cos(beta)]), 0.0, k, o2)
+        start = two[-1]
+    else:
+        rs = np.unique(np.append(np.linspace(far, p.da[1] / 2, 60), rw2))
+        beta = -flank_angle(rs, p.module, p.z[1], p.alpha, p.x[1])
+        two = turned(np.column_stack([rs * np.sin(beta), rs * np.cos(beta)]), turns[1], k, o2)
+        start = two[0]
+    sheet.curves.append(("working-profile2", "thick", two))
+    sheet.curves.append(("working-start2", "thin", _carried(o2, b1, start, far * k)))
+
+
+def _carried(centre: np.ndarray, frm: np.ndarray, to: np.ndarray, radius: float) -> np.ndarray:
+    """The thin arc about ``centre`` from the point ``frm`` of the line of action to ``to``, the
+    short way round."""
+    a0 = math.atan2(frm[0] - centre[0], frm[1] - centre[1])
+    a1 = math.atan2(to[0] - centre[0], to[1] - centre[1])
+    a1 = a0 + (a1 - a0 + math.pi) % (2.0 * math.pi) - math.pi
+    return arc(centre, radius, a0, a1, 40)
+
+
+def _thicknesses(sheet: PairSheet, a: PairAnalysis, o1: np.ndarray, o2: np.ndarray | None,
+                 turns: tuple[float, float], tau: list[float]) -> None:
+    """The chordal tooth thicknesses on teeth clear of P: wheel 1's second tooth left of P, wheel
+    2's second tooth right of it (a rack's: its thickness along the reference and tip lines)."""
+    p = a.pair
+    k = sheet.k
+    for i in range(2):
+        if i == 1 and p.kind == "rack":
+            m, tips = p.module, (p.addenda[1] if p.addenda is not None else p.addendum)
+            c = turns[1] + 2.0 * p.p
+            for name, y, s in (("s2", p.x[0] * m, p.s[1]), ("sa2", (p.x[0] - tips) * m, p.sa[1])):
+                sheet.tags.append(Tag("detail", name, s, ((c - s / 2) * k, y * k), ((c + s / 2) * k, y * k),
+                                      (f"{name}a", f"{name}b")))
+            continue
+        centre = o1 if i == 0 else o2
+        mid = turns[0] - 1.5 * tau[0] if i == 0 else \
+            turns[1] - 1.5 * tau[1] if p.kind == "external" else turns[1] + 1.5 * tau[1]
         for name, d, s in (("s", p.d[i], p.s[i]), ("sa", p.da[i], p.sa[i])):
             half = s / d
             e0 = centre + np.array([math.sin(mid - half), math.cos(mid - half)]) * d / 2 * k
             e1 = centre + np.array([math.sin(mid + half), math.cos(mid + half)]) * d / 2 * k
             sheet.tags.append(Tag("detail", f"{name}{i + 1}", d * math.sin(half), tuple(e0), tuple(e1),
                                   (f"{name}{i + 1}a", f"{name}{i + 1}b")))
-    return sheet
-
-
-def specific_sliding(a: PairAnalysis, rho1: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """λ1, λ2 at the points of the line of action ``rho1`` (mm) from N1: λ1 = 1 − ρ2/(u·ρ1),
-    λ2 = 1 − u·ρ1/ρ2, ρ2 = N1N2 − ρ1, u = z2/z1 (the forms of :mod:`plans.gears.involute`)."""
-    p = a.pair
-    u = p.z[1] / p.z[0]
-    rho1 = np.asarray(rho1, float)
-    rho2 = p.line - rho1
-    return 1.0 - rho2 / (u * rho1), 1.0 - u * rho1 / rho2
-
-
-def _sliding(sheet: PairSheet, a: PairAnalysis) -> None:
-    """The specific-sliding diagram below the detail (see the module)."""
-    p = a.pair
-    k = sheet.k
-    x0, y0, x1, _ = sheet.bounds()
-    g = [math.sqrt(max((da / 2) ** 2 - (db / 2) ** 2, 0.0)) for da, db in zip(p.da, p.db)]
-    rho_b2, rho_b1 = p.line - g[1], g[0]            # B2 and B1 from N1, mm
-    if not (0.0 < rho_b2 < rho_b1 < p.line):
-        return                                       # interference: the sliding is not defined there
-    rho = np.linspace(rho_b2, rho_b1, 80)
-    l1, l2 = specific_sliding(a, rho)
-    top = float(max(np.max(np.abs(l1)), np.max(np.abs(l2)), 1.0))
-    mu = min(m * 10.0 ** e for e in range(-3, 4) for m in SLIDING_SERIES if top / (m * 10.0 ** e) <= SLIDING_MM)
-    sheet.mu_sliding = mu
-    up = float(max(np.max(l1), np.max(l2), 0.0)) / mu
-    base = y0 - 14.0 - up                            # the axis, below the detail
-    left = -p.line / 2.0 * k
-    at = {name: left + r * k for name, r in (("N_1", 0.0), ("B_2", rho_b2), ("P", p.line - p.dw[1] / 2.0 *
-                                                                                math.sin(p.alpha_w)),
-                                             ("B_1", rho_b1), ("N_2", p.line))}
-    sheet.curves.append(("sliding-axis", "thin", np.array([[at["N_1"] - 4.0, base], [at["N_2"] + 4.0, base]])))
-    for name, x in at.items():
-        sheet.curves.append((f"sliding-tick-{name}", "thin", np.array([[x, base - 1.2], [x, base + 1.2]])))
-        sheet.labels.append((name.replace("_", "_{") + "}" if "_" in name else name, (x, base - 1.2), (0.0, -1.0)))
-    xs = left + rho * k
-    for i, lam in enumerate((l1, l2)):
-        sheet.curves.append((f"sliding{i + 1}", "thick" if i == 0 else "thickdash", np.column_stack([xs, base + lam / mu])))
-        end = len(xs) - 1 if i == 0 else 0
-        sheet.labels.append((f"λ_{{{i + 1}}}", (float(xs[end]), float(base + lam[end] / mu)), (1.0 if i == 0 else -1.0,
-                                                                                             0.3)))
-    for name, r in (("B2", rho_b2), ("B1", rho_b1)):
-        v1, v2 = specific_sliding(a, np.array([r]))
-        x = left + r * k
-        for i, v in enumerate((float(v1[0]), float(v2[0]))):
-            sheet.tags.append(Tag("sliding", f"λ{i + 1}:{name}", abs(v), (x + (i - 0.5) * 1.2, base),
-                                  (x + (i - 0.5) * 1.2, base + v / mu), (f"axis-{name}", f"λ{i + 1}-{name}")))
-    sheet.labels.append((f"specific sliding λ_{{1}}, λ_{{2}} along N_{{1}}N_{{2}} (μ_{{λ}} = {mu:g} 1/mm)",
-                         (left, base + up + 6.0), (1.0, 0.0)))
-
-
-def _overview(sheet: PairSheet, a: PairAnalysis) -> None:
-    """The general view (both wheels whole, reduced k0:1) left of the detail, with a_w and radii."""
-    p = a.pair
-    height = p.a_w + p.da[0] / 2 + p.da[1] / 2
-    k0 = next((r for r in REDUCTIONS if height * r <= OVERVIEW_MM), REDUCTIONS[-1])
-    sheet.k0 = k0
-    left, low, _, _ = sheet.bounds()
-    x0 = left - 25.0 - p.da[1] / 2 * k0
-    o1 = np.array([x0, low + p.da[0] / 2 * k0])
-    o2 = o1 + np.array([0.0, p.a_w * k0])
-    for i, centre in enumerate((o1, o2)):
-        for name, d, kind in (("working", p.dw[i], "dash"), ("tip", p.da[i], "thin"), ("base", p.db[i], "thin")):
-            sheet.curves.append((f"overview-{name}{i + 1}", kind, _arc(centre, d / 2 * k0, 0.0, 2.0 * math.pi, 361)))
-    sheet.points += [("O_1", tuple(o1)), ("O_2", tuple(o2))]
-    sheet.tags.append(Tag("overview", "aw", p.a_w, tuple(o1), tuple(o2), ("O1", "O2")))
-    for i, centre in enumerate((o1, o2)):
-        for j, (name, d) in enumerate((("ra", p.da[i]), ("rb", p.db[i]))):
-            ang = math.radians((150.0 + 60.0 * j) if i == 0 else (30.0 - 60.0 * j))
-            end = centre + np.array([math.sin(ang), math.cos(ang)]) * d / 2 * k0
-            sheet.tags.append(Tag("overview", f"{name}{i + 1}", d / 2, tuple(centre), tuple(end),
-                                  (f"O{i + 1}", f"{name}{i + 1}")))
 
 
 def cutting(a: PairAnalysis, k: float | None = None) -> PairSheet:
@@ -314,7 +262,7 @@ def cutting(a: PairAnalysis, k: float | None = None) -> PairSheet:
     largest that fits)."""
     if k is None:
         x0, y0, x1, y1 = _cutting(a, 1.0).bounds()
-        k = _scale_for(a.pair.module, (x1 - x0, y1 - y0))
+        k = scale_for(a.pair.module, (x1 - x0, y1 - y0))
     return _cutting(a, k)
 
 
@@ -324,12 +272,12 @@ def _cutting(a: PairAnalysis, k: float) -> PairSheet:
     sheet = PairSheet(k=k)
     r = p.d[0] / 2
     centre = np.array([0.0, -r * k])
-    for j, o in enumerate(_outlines(_wheel(a, 0, 5, -2))):
-        sheet.outlines.append((f"wheel{j}" if j else "wheel", _turned(o, 0.0, k, centre)))
+    for j, o in enumerate(outlines(_wheel(a, 0, 5, -2))):
+        sheet.outlines.append((f"wheel{j}" if j else "wheel", turned(o, 0.0, k, centre)))
     tau = 2.0 * math.pi / p.z[0]
     for name, d, kind in (("reference", p.d[0], "dash"), ("base", p.db[0], "thin"), ("tip", p.da[0], "thin"),
                           ("root", p.df[0], "thin")):
-        sheet.curves.append((name, kind, _arc(centre, d / 2 * k, -2.6 * tau, 2.6 * tau)))
+        sheet.curves.append((name, kind, arc(centre, d / 2 * k, -2.6 * tau, 2.6 * tau)))
     v_top = (p.addendum + p.clearance + x) * m          # the cutter's root line: c*·m above the blank's tip
     tooth = cutter_tooth(m, p.alpha, x, p.addendum, p.clearance, a.tip_radius, v_top)
     teeth = [tooth + np.array([j * p.p, 0.0]) for j in range(-2, 3)]

@@ -42,7 +42,7 @@ from .sheets.plans import plan_sheets
 from .sheets.scheme import scheme_sheets
 from .sheets.shaking import shaking_sheets
 from .sheets.dynamics import dynamics_sheets, dynamics_warnings
-from .sheets.gear_pair import pair_not_drawn, pair_report, pair_sheets
+from .sheets.gear_pair import pair_report, pair_sheets
 from .stages import (assembly_analysis, force_analysis, machine_motion, machine_startup, record_stages, solve_motion,
                      solve_scene, true_speed_motion)
 from .stages import shaking_forces
@@ -161,7 +161,7 @@ def _render_train(scene: Scene, train: GearAnalysis | None, *, stem: str, style:
             raise exc.in_file(where) if where and hasattr(exc, "in_file") else exc
         data["gear_pair"] = pair_report(pair)
         files.update(pair_sheets(scene, pair, stem, style))
-        warnings += pair.warnings + pair_not_drawn(scene, pair)
+        warnings += pair.warnings
     files[f"{stem}.json"] = report_text(data)
     at = scene.file or f"scene {scene.title!r}"
     return Rendered(stem, files, None, None, tuple(f"{at}: {w}" for w in warnings), None, train)

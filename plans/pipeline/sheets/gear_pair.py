@@ -15,7 +15,7 @@ from ...drawing.svg import Heading
 from ...gears.pair import PairAnalysis
 from ...scene import Scene
 
-__all__ = ["pair_report", "pair_sheets", "pair_not_drawn"]
+__all__ = ["pair_report", "pair_sheets"]
 
 
 def pair_report(a: PairAnalysis) -> dict[str, Any]:
@@ -53,30 +53,35 @@ def _finite(v: float) -> float | None:
     return float(v) if math.isfinite(v) else None
 
 
-#: Why an internal pair or a rack has no sheets (a warning, one line).
-NOT_DRAWN = "the meshing and cutting sheets of {what} are not drawn yet; the report holds its geometry"
+def _pair_text(v: tuple[float, float], digits: str = ".3f") -> str:
+    """Two values "wheel 1/wheel 2"; a rack's infinite one left out."""
+    return "/".join(f"{x:{digits}}" for x in v if math.isfinite(x))
 
 
 def pair_sheets(scene: Scene, a: PairAnalysis, stem: str, style: Style) -> dict[str, str]:
-    """The meshing and cutting sheets the scene draws (file name → SVG); none for an internal
-    pair or a rack (:func:`pair_not_drawn` says so)."""
+    """The meshing and cutting sheets the scene draws (file name → SVG), of an external pair, an
+    internal pair (wheel 2 a ring gear) or a pinion with a rack."""
     p = a.pair
     files: dict[str, str] = {}
-    if p.kind != "external":
-        return files
-    given = (f"z = {p.z[0]}/{p.z[1]}, m = {p.module:g} mm, α = {math.degrees(p.alpha):g}°, "
+    mate = {"external": f"{p.z[1]}", "internal": f"{p.z[1]} (ring gear)", "rack": "rack"}[p.kind]
+    given = (f"z = {p.z[0]}/{mate}, m = {p.module:g} mm, α = {math.degrees(p.alpha):g}°, "
              f"x = {p.x[0]:.4g}/{p.x[1]:.4g} ({a.rule.replace('_', ' ')})")
     if "meshing" in scene.draw:
         s = meshing(a)
-        notes = (f"α_w = {math.degrees(p.alpha_w):.4f}°, a_w = {p.a_w:.4f} mm, y = {p.y:.5f}, Δy = {p.delta_y:.5f}; "
-                 f"d_w = {p.dw[0]:.3f}/{p.dw[1]:.3f}, d_a = {p.da[0]:.3f}/{p.da[1]:.3f}, d_f = {p.df[0]:.3f}/"
-                 f"{p.df[1]:.3f}, d_b = {p.db[0]:.3f}/{p.db[1]:.3f} mm.",
-                 f"ε_α = B_1B_2/p_b = {p.active:.4f}/{p.pb:.4f} = {p.contact_ratio:.4f}; specific sliding at B_2 "
+        centres = "a_w" if p.kind != "rack" else "O_1 to the rack's reference line"
+        notes = (f"α_w = {math.degrees(p.alpha_w):.4f}°, {centres} = {p.a_w:.4f} mm, y = {p.y:.5f}, Δy = "
+                 f"{p.delta_y:.5f}; d_w = {_pair_text(p.dw)}, d_a = {_pair_text(p.da)}, d_f = {_pair_text(p.df)}, "
+                 f"d_b = {_pair_text(p.db)} mm.",
+                 f"ε_α = B_1B_2/p_b = {p.active:.4f}/{p.pb:.4f} = {p.contact_ratio:.4f}; approach PB_2 = "
+                 f"{p.approach:.4f} mm, recess PB_1 = {p.recess:.4f} mm; specific sliding at B_2 "
                  f"(wheel 1) {_text(p.sliding[0])}, at B_1 (wheel 2) {_text(p.sliding[1])}. s̄: chordal tooth "
-                 "thickness on the reference (s̄) and tip (s̄_a) circles.")
+                 "thickness on the reference (s̄) and tip (s̄_a) circles" + (" (a rack's: along its lines)."
+                                                                           if p.kind == "rack" else "."))
         scales = f"detail {s.k:g}:1 (μ = {1 / s.k:g} mm/mm); general view 1:{1 / s.k0:g} (μ = {1 / s.k0:g} mm/mm)"
+        sheet = {"external": "Involute gear pair in mesh", "internal": "Internal involute pair in mesh",
+                 "rack": "Involute pinion and rack in mesh"}[p.kind]
         files[f"{stem}-meshing.svg"] = draw_pair_sheet(
-            s, Heading(scene.title, "Involute gear pair in mesh", given), ident="meshing", style=style, notes=notes,
+            s, Heading(scene.title, sheet, given), ident="meshing", style=style, notes=notes,
             scales=scales, contact_ratio=p.contact_ratio)
     if "cutting" in scene.draw:
         s = cutting(a)
@@ -90,15 +95,6 @@ def pair_sheets(scene: Scene, a: PairAnalysis, stem: str, style: Style) -> dict[
             s, Heading(scene.title, f"Generation of wheel {a.names[0]} by the rack cutter", given), ident="cutting", style=style,
             notes=notes, scales=scales)
     return files
-
-
-def pair_not_drawn(scene: Scene, a: PairAnalysis) -> tuple[str, ...]:
-    """The warning (one line) when the scene asks for sheets the pair ``a`` does not have yet: an
-    internal pair's or a rack's meshing and cutting sheets."""
-    asked = [k for k in ("meshing", "cutting") if k in scene.draw]
-    if a.pair.kind == "external" or not asked:
-        return ()
-    return (NOT_DRAWN.format(what="an internal pair" if a.pair.kind == "internal" else "a rack"),)
 
 
 def _text(v: float) -> str:
