@@ -153,8 +153,15 @@ def test_the_default_tip_radius_follows_the_pressure_angle():
     assert rep["tip_radius"] == pytest.approx(largest * 2.0, rel=1e-15)
     rep = _pair({"z1": 20, "z2": 40, "module": 2.0, "clearance": 0.1})["gear_pair"]
     assert rep["tip_radius"] == pytest.approx(0.1 / (1.0 - math.sin(math.radians(20.0))) * 2.0, rel=1e-15)
-    rep = _pair({"z1": 20, "z2": 40, "module": 2.0, "pressure_angle": 25.0})["gear_pair"]
+    rep = _pair({"z1": 20, "z2": 40, "module": 2.0, "pressure_angle": 22.0})["gear_pair"]
     assert rep["tip_radius"] == pytest.approx(0.38 * 2.0, rel=1e-15)    # the standard one, where it fits
+    # at 25° the corner allows 0.4263, but the tip is (π/4 − 1.25·tan 25°)·m = 0.2025·m wide each side:
+    # the two roundings of 0.38 would cross; the full round tip, 0.2025·cos 25°/(1 − sin 25°) = 0.3179
+    a = math.radians(25.0)
+    rep = _pair({"z1": 20, "z2": 40, "module": 2.0, "pressure_angle": 25.0})["gear_pair"]
+    full = (math.pi / 4 - 1.25 * math.tan(a)) * math.cos(a) / (1 - math.sin(a))
+    assert 0.25 / (1 - math.sin(a)) > 0.38 > full
+    assert rep["tip_radius"] == pytest.approx(full * 2.0, rel=1e-15)
     rep = _pair({"z1": 40, "z2": 80, "module": 2.0, "pressure_angle": 14.5, "tip_radius": 0.3335})["gear_pair"]
     assert rep["tip_radius"] == pytest.approx(0.3335 * 2.0, rel=1e-15)  # the bound written to 4 digits is taken
 

@@ -18,6 +18,8 @@ __all__ = ["specific_sliding", "sliding_diagram", "overview", "LAMBDA_MAX"]
 #: The largest |λ| drawn: near N1 or N2 the specific sliding grows without bound (a tip reaching
 #: to the tangency point); the curves are cut at ±LAMBDA_MAX and an ordinate beyond it is written.
 LAMBDA_MAX = 50.0
+#: A |λ| beyond this is the rounding of a tip passing exactly through N (λ infinite there).
+UNBOUNDED = 1e9
 
 
 def specific_sliding(a: PairAnalysis, rho1: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -75,7 +77,9 @@ def sliding_diagram(sheet: PairSheet, a: PairAnalysis) -> None:
         x = left + r * k
         for i, v in enumerate((float(v1[0]), float(v2[0]))):
             if abs(v) > LAMBDA_MAX:                  # the tip reaches (almost) to N: written, not drawn
-                sheet.labels.append((f"λ_{{{i + 1}}}({name[0]}_{{{name[1]}}}) = {v:.4g}, off the diagram",
+                value = f"= {v:.4g}".replace("-", "−") if abs(v) < UNBOUNDED else \
+                    f"→ {'−' if v < 0 else ''}∞ ({name[0]}_{{{name[1]}}} at N)"
+                sheet.labels.append((f"λ_{{{i + 1}}}({name[0]}_{{{name[1]}}}) {value}, off the diagram",
                                      (x, base - 6.0 - 4.0 * i), (1.0, -1.0)))
                 continue
             sheet.tags.append(Tag("sliding", f"λ{i + 1}:{name}", abs(v), (x + (i - 0.5) * 1.2, base),

@@ -70,16 +70,22 @@ def _teeth(value: Any, key: str) -> int:
     return z
 
 
-def largest_tip_radius(pressure_angle: float, clearance: float) -> float:
-    """The largest tip radius ρ* of the cutter (in modules) that fits its tip corner:
-    c*/(1 − sin α), α in degrees (0.38 for the standard rack, α = 20°, c* = 0.25)."""
-    return clearance / (1.0 - math.sin(math.radians(pressure_angle)))
+def largest_tip_radius(pressure_angle: float, clearance: float, addendum: float = 1.0) -> float:
+    """The largest tip radius ρ* of the cutter (in modules) that fits its tip corner: the rounding
+    ends on the flank within the clearance, ρ* ≤ c*/(1 − sin α) (0.38 for the standard rack, α =
+    20°, c* = 0.25), and the two roundings of a tooth do not cross, ρ* ≤ (π/4 − (ha* + c*)·tan α)·
+    cos α/(1 − sin α) (a full round tip; binding for a long addendum: 0.287 at ha* = 1.355), α in
+    degrees, ``addendum`` ha* the cutter's (the larger of a pair's)."""
+    a = math.radians(pressure_angle)
+    corner = clearance / (1.0 - math.sin(a))
+    full_round = (math.pi / 4.0 - (addendum + clearance) * math.tan(a)) * math.cos(a) / (1.0 - math.sin(a))
+    return max(min(corner, full_round), 0.0)
 
 
-def default_tip_radius(pressure_angle: float, clearance: float) -> float:
+def default_tip_radius(pressure_angle: float, clearance: float, addendum: float = 1.0) -> float:
     """ρ* when the scene gives none: the standard 0.38 where it fits the rack's tip corner, else the
     largest that does (:func:`largest_tip_radius`: 0.3335 at α = 14.5°, c* = 0.25)."""
-    largest = largest_tip_radius(pressure_angle, clearance)
+    largest = largest_tip_radius(pressure_angle, clearance, addendum)
     return STANDARD_TIP_RADIUS if STANDARD_TIP_RADIUS <= _allowed(largest) else largest
 
 
@@ -144,16 +150,16 @@ def read_gear_pair(table: Any) -> GearPairSpec:
     c = number(table.get("clearance", 0.25), "gear_pair.clearance", bound=10.0)
     if not 0.0 <= c <= 0.5:
         raise SceneError(f"clearance c* is 0 … 0.5 (0.25 standard), got {c:g}", key="gear_pair.clearance")
-    largest = largest_tip_radius(alpha, c)         # the rounding fills the tip corner (0.38 standard)
+    largest = largest_tip_radius(alpha, c, ha)     # the rounding fills the tip corner (0.38 standard)
     if "tip_radius" in table:
         rho = number(table["tip_radius"], "gear_pair.tip_radius", bound=10.0)
         if not 0.0 <= rho <= _allowed(largest):
-            raise SceneError(f"tip_radius ρ* (in modules) is 0 … c*/(1 − sin α) = {largest:.4g} with "
-                             f"α = {alpha:g}° and c* = {c:g} (the rounding must fit the cutter's tip corner), "
-                             f"got {rho:g}",
+            raise SceneError(f"tip_radius ρ* (in modules) is 0 … {largest:.4g} with α = {alpha:g}°, c* = {c:g} and "
+                             f"the cutter's addendum {ha:g} (the rounding must fit the cutter's tip corner, "
+                             f"c*/(1 − sin α), and its two roundings must not cross), got {rho:g}",
                              key="gear_pair.tip_radius")
     else:
-        rho = default_tip_radius(alpha, c)
+        rho = default_tip_radius(alpha, c, ha)
     rho = min(rho, largest)
     has_x = "x1" in table or "x2" in table
     if has_x and "shift" in table:

@@ -9,6 +9,7 @@ import math
 from typing import Any
 
 from ...constructions.gear_pair import cutting, meshing
+from ...constructions.gear_views import UNBOUNDED
 from ...drawing import Style
 from ...drawing.gear_pair import draw_pair_sheet
 from ...drawing.svg import Heading
@@ -98,4 +99,8 @@ def pair_sheets(scene: Scene, a: PairAnalysis, stem: str, style: Style) -> dict[
 
 
 def _text(v: float) -> str:
-    return f"{v:.3f}" if math.isfinite(v) else "not defined (interference)"
+    if not math.isfinite(v):
+        return "not defined (interference)"
+    if abs(v) >= UNBOUNDED:
+        return "unbounded (the other tip passes through N)"
+    return f"{v:.3f}"
