@@ -56,11 +56,10 @@ def _coords(sheet: GearSheet) -> list[tuple[float, float]]:
         pts += [ln.start, ln.end]
     pts += [sheet.pole, (sheet.pole[0], sheet.pole[1] - 6.0)]
     pts += [seg.head for seg in sheet.omega]
-    short, k = _short(sheet)
-    if short:                                          # the ω detail under the pole
-        ox, oy = _detail_origin(sheet)
-        pts += [(ox - 4.0, oy + 6.0), (ox + max(k * abs(s.head[0] - s.tail[0]) for s in short) + 14.0,
-                                       oy - 4.0 * len(short) - 3.0)]
+    for short, k, (ox, oy) in ((*_short(sheet), _detail_origin(sheet)), (*_short_v(sheet), _v_detail_origin(sheet))):
+        if short:                                      # the ω and v details under the pole
+            pts += [(ox - 4.0, oy + 6.0), (ox + max(k * abs(s.head[0] - s.tail[0]) for s in short) + 14.0,
+                                           oy - 4.0 * len(short) - 3.0)]
     x, y = _table_at(sheet)
     pts += [(x, y), (x + sum(TABLE_COLUMNS_MM), y - ROW_MM * (len(sheet.table) + 1))]
     if sheet.end is not None:
@@ -183,6 +182,7 @@ def draw_gears(sheet: GearSheet, heading: Heading, *, ident: str, style: Style =
     if given is None:
         _velocity_picture(dwg, canvas, sheet, ident, style, labels)
         _omega_picture(dwg, canvas, sheet, ident, style, labels)
+        _v_detail(dwg, canvas, sheet, ident, style, labels)
     _end_view(dwg, canvas, sheet, ident, style, labels)
     _table(dwg, canvas, sheet, _table_at(sheet), ident, style, given)
     dwg.add(labels)
@@ -336,19 +336,38 @@ SHORT_MM = 5.0
 DETAIL_FACTORS = (2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 500.0)
 
 
-def _short(sheet: GearSheet) -> tuple[list, float]:
-    """The ω segments drawn under SHORT_MM (not 0) and the smallest factor drawing them all at least
-    that long (1.0: none)."""
-    short = [s for s in sheet.omega if s.omega != 0.0 and abs(s.head[0] - s.tail[0]) < SHORT_MM]
+def _factor(short: list) -> tuple[list, float]:
+    """``short`` and the smallest factor drawing each of its segments at least SHORT_MM long (1.0: none)."""
     if not short:
         return [], 1.0
     least = min(abs(s.head[0] - s.tail[0]) for s in short)
-    k = next((f for f in DETAIL_FACTORS if least * f >= SHORT_MM), DETAIL_FACTORS[-1])
-    return short, k
+    return short, next((f for f in DETAIL_FACTORS if least * f >= SHORT_MM), DETAIL_FACTORS[-1])
+
+
+#: A speed below this × the sheet's largest is a rounded zero (a fixed wheel's pitch point), not drawn again.
+ZERO_REL = 1e-9
+
+
+def _short(sheet: GearSheet) -> tuple[list, float]:
+    """The ω segments drawn under SHORT_MM (not 0) and the factor of their detail."""
+    top = max((abs(s.omega) for s in sheet.omega), default=0.0)
+    return _factor([s for s in sheet.omega if abs(s.omega) > ZERO_REL * top and abs(s.head[0] - s.tail[0]) < SHORT_MM])
+
+
+def _short_v(sheet: GearSheet) -> tuple[list, float]:
+    """The pitch-point velocities drawn under SHORT_MM (not 0) and the factor of their detail."""
+    top = max((abs(p.v) for p in sheet.pitch), default=0.0)
+    return _factor([p for p in sheet.pitch if abs(p.v) > ZERO_REL * top and abs(p.head[0] - p.tail[0]) < SHORT_MM])
 
 
 def _detail_origin(sheet: GearSheet) -> tuple[float, float]:
     return sheet.axis_x, sheet.pole[1] - 12.0
+
+
+def _v_detail_origin(sheet: GearSheet) -> tuple[float, float]:
+    """Under the ω detail (or where it would be)."""
+    ox, oy = _detail_origin(sheet)
+    return ox, oy - (4.0 * len(_short(sheet)[0]) + 10.0 if _short(sheet)[0] else 0.0)
 
 
 def _omega_detail(dwg, canvas: Canvas, sheet: GearSheet, ident: str, style: Style, labels) -> None:
@@ -375,4 +394,31 @@ def _omega_detail(dwg, canvas: Canvas, sheet: GearSheet, ident: str, style: Styl
     canvas.text(dwg.add(dwg.g(id=f"{ident}-omega-detail-caption", fill=style.colour)),
                 canvas.paper((ox - 2.0, oy + 3.5)), f"detail ×{k:g} of the short ω segments, μ_ω = "
                 f"{sheet.mu_omega / k:.4g} (rad/s)/mm", size=style.small_text, ident=f"{ident}-dcap")
+    dwg.add(g)
+
+
+def _v_detail(dwg, canvas: Canvas, sheet: GearSheet, ident: str, style: Style, labels) -> None:
+    """The short pitch-point velocities again, k× longer, under the ω detail (``data-plan="bound"``,
+    μ = μV/k): each measured (``vp:a-b:detail``), each named, the factor stated."""
+    short, k = _short_v(sheet)
+    if not short:
+        return
+    ox, oy = _v_detail_origin(sheet)
+    g = dwg.g(id=f"{ident}-v-detail", stroke=style.colour, fill="none")
+    g.attribs["data-mu"] = repr(sheet.mu_v / k)
+    g.attribs["data-plan"] = "bound"
+    g.attribs["data-vectors"] = str(len(short))
+    for j, p in enumerate(short):
+        y = oy - 4.0 * j
+        head = (ox + k * (p.head[0] - p.tail[0]), y)
+        line = vector(canvas, g, (ox, y), head, style.vector_colour, f"{ident}-dv{j}", f"{ident}-dvh{j}", style)
+        line.attribs["data-quantity"] = f"vp:{p.a}-{p.b}:detail"
+        line.attribs["data-value"] = repr(abs(p.v))
+        line.attribs["data-direction"] = _direction(canvas, (ox, y), head)
+        line.attribs["data-from"], line.attribs["data-to"] = f"r{j}", f"v{p.a}{p.b}"
+        canvas.label(labels, head, f"v_{{{p.a}{p.b}}}", size=style.small_text, prefer=(1.0, 0.0),
+                     ident=f"{ident}-dvl{j}", near=0.8, fill=style.vector_colour)
+    canvas.text(dwg.add(dwg.g(id=f"{ident}-v-detail-caption", fill=style.colour)),
+                canvas.paper((ox - 2.0, oy + 3.5)), f"detail ×{k:g} of the short v segments, μ_V = "
+                f"{sheet.mu_v / k:.4g} (m/s)/mm", size=style.small_text, ident=f"{ident}-dvcap")
     dwg.add(g)
