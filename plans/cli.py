@@ -223,7 +223,9 @@ def _handout(source: str, out: str, quiet: bool, random: str | None, seed: str |
     if bank is not None:
         write_files({Path(moodle).name: bank}, Path(moodle).parent, option="--moodle")   # checked above
     if not quiet:
-        kept = "the train's conditions kept" if h.train else f"margins |condition| ≥ {ho.margin_text(h)}"
+        lo, hi = ho.BALANCING_RANGE
+        kept = ("the train's conditions kept" if h.train else f"balancing masses within {lo:g}…{hi:g} × the base's"
+                if h.rotor else f"margins |condition| ≥ {ho.margin_text(h)}")
         extra = f", seed {h.seed}, {kept} ({h.redraws} draw{'s' if h.redraws != 1 else ''} rejected and redrawn)" \
             if h.seed is not None else ""
         print(f"wrote {len(drawn)} variants of {h.base.name}{extra} to {out}/ (open {out}/index.html)"

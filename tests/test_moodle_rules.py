@@ -29,7 +29,7 @@ import numpy as np
 import pytest
 
 from plans.errors import SceneError
-from plans.handout import moodle_xml, read_variants, solve_variant, variant_asked
+from plans.handout import field_tolerance, moodle_xml, read_variants, solve_variant, variant_asked
 from test_moodle import ROOT, SMALL_SVG, TOLERANCE
 
 EXAMPLES = [*sorted((ROOT / "plans" / "examples").glob("*.toml")),
@@ -174,7 +174,8 @@ def test_every_field_parses_by_the_cloze_rules_with_the_answer_and_tolerance_int
         v = item.value
         assert alt.answer == f"{v:.6g}"                                      # 6 significant digits
         a, t = float(alt.answer), float(alt.tolerance)
-        need = TOLERANCE * abs(v) + abs(v - a)                 # ±2 % of the exact value, seen from a
+        w = field_tolerance(item, TOLERANCE)                   # ±2 % of the value, or the drawing's precision
+        need = w + abs(v - a)                                  # seen from a
         tol = Decimal(alt.tolerance)
         assert tol - Decimal(1).scaleb(tol.adjusted() - 5) < Decimal(need) <= tol, (item, alt)   # need, rounded up
         assert abs(v - a) <= 5.000001e-6 * abs(v) < 1e-4 * abs(v) <= TOLERANCE * abs(v)   # a is inside the exact one's
@@ -185,8 +186,8 @@ def test_every_field_parses_by_the_cloze_rules_with_the_answer_and_tolerance_int
         for text in typed(v):
             assert "." in text or "e" in text
             assert graded_right(float(text), a, t), (item, text)
-        assert graded_right(v * (1 + TOLERANCE), a, t) and graded_right(v * (1 - TOLERANCE), a, t)
-        assert not graded_right(v * (1 + 1.001 * TOLERANCE), a, t) and not graded_right(-v, a, t)
+        assert graded_right(v + w, a, t) and graded_right(v - w, a, t)
+        assert not graded_right(v + 1.001 * w, a, t) and not graded_right(-v, a, t)
 
 
 def test_a_value_typed_as_the_text_says_is_graded_right_in_english_russian_and_german(bank):

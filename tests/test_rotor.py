@@ -377,12 +377,11 @@ def test_a_linkage_does_not_draw_balancing():
         parse_scene(data)
 
 
-def test_no_handout_of_a_rotor():
+def test_a_rotor_makes_a_balancing_handout():
+    """A rotor's handout is the balancing kind (tests/test_handout_rotor.py)."""
     from plans.handout.asked import kind_of
 
-    with pytest.raises(SceneError) as info:
-        kind_of(parse_scene(_scene(KHURMI_21_2, [0.1, 0.5], [0.1, 0.1])))
-    assert info.value.key == "rotor"
+    assert kind_of(parse_scene(_scene(KHURMI_21_2, [0.1, 0.5], [0.1, 0.1]))) == "balancing"
 
 
 def test_command_line_refuses_in_one_line(tmp_path):

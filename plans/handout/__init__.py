@@ -30,17 +30,23 @@ own scene file), ``variants.toml`` (the variants, reproducible: ``plans handout`
 same keys), a copy of the base scene and ``index.html``. Only the public API is used:
 :func:`plans.parse_scene`, :func:`plans.render`, :meth:`plans.Sheets.save`.
 
-Four kinds of assignment (:mod:`.asked`): a linkage's kinematics, a loaded linkage's forces,
+Five kinds of assignment (:mod:`.asked`): a linkage's kinematics, a loaded linkage's forces,
 a gear train (its variants set ``teeth`` and ``input``, drawn keeping the coaxial, assembly and
-neighbourhood conditions and no undercut) and a machine's dynamics (the flywheel). With
-:func:`moodle_xml` a handout is also a Moodle XML question bank (:mod:`.moodle`).
+neighbourhood conditions and no undercut), a machine's dynamics (the flywheel: marked against
+the chord method at the cycle's positions, :mod:`.graphical`) and a rotor's balancing (its
+variants set ``masses = [{ mass = …, radius = …, angle = …, plane = … }, …]``, drawn by
+:mod:`.rotor`; the key is the -balancing sheet). With :func:`moodle_xml` a handout is also a
+Moodle XML question bank (:mod:`.moodle`).
 
-The package: :mod:`.asked` (what each kind asks, from a report), :mod:`.variants` (the data,
-reading a variants file), :mod:`.solving` (a variant solved, the margins), :mod:`.draws` (random
-variants), :mod:`.toml_text` (TOML writer), :mod:`.assignment` (the assignment sheet, its data
-and task), :mod:`.index` (``index.html``), :mod:`.moodle` (the question bank) and
+The package: :mod:`.graphical` (what a graphical task's method gives, and its drawing precision),
+:mod:`.asked` (what each kind asks, from a report), :mod:`.variants` (the data, reading a
+variants file), :mod:`.solving` (a variant solved, the margins), :mod:`.rotor` (a rotor's random
+variants), :mod:`.draws` (random variants), :mod:`.toml_text` (TOML writer),
+:mod:`.rotor_sheet` (a rotor's assignment sheet), :mod:`.assignment` (the assignment sheet, its
+data and task), :mod:`.index` (``index.html``), :mod:`.moodle` (the question bank) and
 :mod:`.writing` (the output folder). Each imports only modules before it in this list
-(:mod:`.index` only :mod:`.asked` and :mod:`.variants`); nothing here imports the command line.
+(:mod:`.index` only :mod:`.asked`, :mod:`.rotor` and :mod:`.variants`); nothing here imports the
+command line.
 """
 
 from __future__ import annotations
@@ -48,7 +54,10 @@ from __future__ import annotations
 from .asked import KINDS, Asked, asked, kind_of
 from .assignment import assignment_sheets, assignment_svg, variant_asked
 from .draws import random_variants
-from .moodle import DEFAULT_TOLERANCE, cloze_field, moodle_xml, parse_tolerance
+from .graphical import Chords, balancing_precision, chord_answers
+from .moodle import DEFAULT_TOLERANCE, cloze_field, field_tolerance, moodle_xml, parse_tolerance
+from .rotor import ANGLE_STEP_DEG as ROTOR_ANGLE_STEP_DEG
+from .rotor import BALANCING_RANGE, MASS_SPREAD
 from .solving import group_margins, solve_variant, variant_data, variant_scene, worst_sine
 from .toml_text import to_toml
 from .variants import (ANGLE_STEP_DEG, LENGTH_SPREAD, MARGIN_SIN, MAX_TRIES, MAX_VARIANTS,
@@ -59,4 +68,6 @@ __all__ = ["MARGIN_SIN", "LENGTH_SPREAD", "ANGLE_STEP_DEG", "SPEED_SERIES", "MAX
            "Variant", "Handout", "Drawn", "read_variants", "read_base", "random_variants", "variant_scene",
            "solve_variant", "write_handout", "Progress", "to_toml", "SPEED_RANGE", "INDEX", "VARIANTS",
            "margin_text", "variant_data", "worst_sine", "group_margins", "KINDS", "Asked", "asked", "kind_of",
-           "assignment_svg", "assignment_sheets", "variant_asked", "DEFAULT_TOLERANCE", "cloze_field", "moodle_xml", "parse_tolerance"]
+           "assignment_svg", "assignment_sheets", "variant_asked", "DEFAULT_TOLERANCE", "cloze_field", "moodle_xml",
+           "parse_tolerance", "field_tolerance", "Chords", "chord_answers", "balancing_precision", "BALANCING_RANGE",
+           "MASS_SPREAD", "ROTOR_ANGLE_STEP_DEG"]

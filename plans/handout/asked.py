@@ -1,6 +1,6 @@
-"""What an assignment asks, kind by kind, and the exact answers from a variant's report.
+"""What an assignment asks, kind by kind, and the answers it is marked against.
 
-Four kinds of assignment, told by the base scene (:func:`kind_of`):
+Five kinds of assignment, told by the base scene (:func:`kind_of`):
 
 - ``kinematics`` — a linkage: |v| (and |a|, when the scene draws the acceleration plan) of the
   moving points, |ω| (and |ε|) of the links other than the driving one, at the first position;
@@ -12,28 +12,33 @@ Four kinds of assignment, told by the base scene (:func:`kind_of`):
   the carrier (to the last wheel when there is no carrier) when one link drives;
 - ``dynamics`` — a machine over its cycle ([dynamics]): the flywheel's moment of inertia J
   (kg·m², on the driving link, for the given δ), or δ reached with a given flywheel, and the
-  constant driving moment M_d (N·m).
+  constant driving moment M_d (N·m), each as the task's graphical integration by chords gives
+  it at the cycle's positions (:mod:`.graphical`; the exact value beside it);
+- ``balancing`` — a rotor ([rotor]): the mass (kg) and the angle (degrees counter-clockwise from
+  θ = 0, in [0, 360)) of the balancing mass in each balancing plane, L then M.
 
 A quantity whose exact value is zero (a point on the frame, a translating link's ω, a held
 wheel), or that is zero to rounding (at most :data:`ZERO` × the scale of its kind: M_b at a
 dead position of the loads, M_d of a machine loaded by weights alone), is given, not asked;
 :func:`task_gap` tells a variant left with nothing to find, or without the quantity its task
-names. Knows only the scene's values; the report is the JSON dict of :meth:`plans.Sheets.report`.
+names. The report is the JSON dict of :meth:`plans.Sheets.report`; a dynamics or balancing
+task's method is solved again from the scene (:mod:`.graphical`).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Mapping
 
 from ..errors import SceneError
 from ..scene import Scene
+from .graphical import balancing_precision, chord_answers
 
 __all__ = ["KINDS", "ZERO", "TASK_NAMES", "Asked", "kind_of", "asked", "task_gap", "symbol_html"]
 
 #: The kinds of assignment, in the course's order.
-KINDS = ("kinematics", "forces", "gears", "dynamics")
+KINDS = ("kinematics", "forces", "gears", "dynamics", "balancing")
 #: A value at most this × the scale of its kind is an exact zero, given (not asked): a computed
 #: value carries a rounding error of a few ulps (~1e-16) of the largest term it is summed from,
 #: times the position's conditioning (at most 1/MARGIN_SIN = 10 in a random variant); 1e-12 is
@@ -44,12 +49,20 @@ ZERO = 1e-12
 @dataclass(frozen=True)
 class Asked:
     """One asked quantity: ``symbol`` in the sheets' markup (``v_{B}``, ``R_{12}``), its
-    ``unit``, what it is in words, and its exact ``value``."""
+    ``unit``, what it is in words, and the ``value`` it is marked against: the exact one, or
+    (``method`` says which, ``exact`` holds the exact value) what the task's graphical method
+    gives at the task's positions. ``precision``: how closely a drawing gives it (in ``unit``,
+    ± the value; 0: not stated), below which no marking tolerance goes; ``angle``: a direction
+    in degrees in [0, 360), marked within ±``precision`` either side of 0°."""
 
     symbol: str
     unit: str
     what: str
     value: float
+    exact: float | None = None
+    precision: float = 0.0
+    angle: bool = False
+    method: str = ""
 
     @property
     def text(self) -> str:
@@ -62,18 +75,17 @@ def kind_of(scene: Scene) -> str:
     (a synthesis to run, an involute pair alone) is refused naming what to give instead."""
     if scene.drive is None:
         if scene.rotor is not None:
-            raise SceneError("a handout is made of a gear train ([gears]), a linkage or a machine; a rotor's "
-                             "balancing ([rotor]) has none yet", key="rotor")
+            return "balancing"
         if scene.flywheel_only:
-            raise SceneError("a handout is made of a gear train ([gears]), a linkage or a machine; a flywheel problem "
-                             "([turning], [operation]) has none yet",
+            raise SceneError("a handout is made of a gear train ([gears]), a linkage, a machine or a rotor ([rotor]); "
+                             "a flywheel problem ([turning], [operation]) has none yet",
                              key="turning" if scene.turning is not None else "operation")
         if scene.synthesis is not None:
             raise SceneError("a [synthesis] scene finds its train when it is drawn: a handout varies a train "
                              "given by its teeth; render it, then copy the found wheels into [gears]", key="synthesis")
         if scene.gears is None:
-            raise SceneError("a handout is made of a gear train ([gears]), a linkage or a machine; an involute "
-                             "pair alone ([gear_pair]) has none yet", key="gear_pair")
+            raise SceneError("a handout is made of a gear train ([gears]), a linkage, a machine or a rotor ([rotor]); "
+                             "an involute pair alone ([gear_pair]) has none yet", key="gear_pair")
         return "gears"
     if scene.dynamics is not None:
         return "dynamics"
@@ -197,10 +209,12 @@ def _gears(scene: Scene, report: Mapping[str, Any]) -> list[Asked]:
     return out
 
 
-def _dynamics(report: Mapping[str, Any]) -> list[Asked]:
+def _dynamics(scene: Scene, report: Mapping[str, Any]) -> list[Asked]:
     """M_d, an exact zero at most ZERO × the largest |M_r| of the loads over the cycle (a machine
     loaded by weights alone does no work over its cycle); J_fw, at most ZERO × (max|ΔT|/ω_m² +
-    max I_r)/δ, the size of the terms it is found from; δ reached, at most ZERO (a ratio of speeds)."""
+    max I_r)/δ, the size of the terms it is found from; δ reached, at most ZERO (a ratio of speeds).
+    Each is then marked against the chord method at the cycle's positions (:mod:`.graphical`),
+    its exact value kept beside it."""
     d = report["cycle"]["dynamics"]
     fw = d["flywheel"]
     moments = max((abs(float(m)) for m in d["reduced_moment"]), default=0.0)
@@ -216,20 +230,43 @@ def _dynamics(report: Mapping[str, Any]) -> list[Asked]:
         scale = (energy / w2 + inertia) / float(fw["delta"]) if w2 > 0.0 and fw["delta"] else 0.0
         out += _nonzero([Asked("J_{fw}", "kg·m²", f"flywheel's moment of inertia for δ = {fw['delta']:g}",
                                float(fw["required"]))], {"kg·m²": scale})
+    if not out:
+        return out
+    c = chord_answers(scene)
+    by = {"M_{d}": (c.moment, c.moment_precision), "J_{fw}": (c.inertia, c.inertia_precision),
+          "δ": (c.delta, c.delta_precision)}
+    method = f"the chord method at the {c.positions} given positions"
+    return [replace(a, value=by[a.symbol][0], exact=a.value, precision=by[a.symbol][1], method=method) for a in out]
+
+
+def _balancing(scene: Scene, report: Mapping[str, Any]) -> list[Asked]:
+    """The mass and angle of each balancing mass (L, the reference plane, then M); a plane that
+    needs no mass (0 kg: its polygon closes by itself, to rounding) asks neither."""
+    out = []
+    for name, b, (dm, da) in zip(("L", "M"), report["rotor"]["balancing"], balancing_precision(scene)):
+        if not float(b["mass"]) > 0.0:
+            continue
+        where = f"plane {name} ({float(b['plane']):g} m{', the reference plane' if name == 'L' else ''})"
+        out += [Asked(f"m_{{{name}}}", "kg", f"balancing mass in {where}", float(b["mass"]), precision=dm),
+                Asked(f"θ_{{{name}}}", "°", f"angle of the balancing mass in plane {name} (counter-clockwise from "
+                      "θ = 0)", float(b["angle"]), precision=da, angle=True)]
     return out
 
 
 def asked(scene: Scene, report: Mapping[str, Any], *, points: list[str] | None = None,
           links: list[str] | None = None) -> tuple[Asked, ...]:
-    """The quantities the assignment of ``scene`` asks, with their exact values from ``report``
-    (``points``, ``links``: those a kinematics assignment names; by default every moving point
+    """The quantities the assignment of ``scene`` asks, with the values they are marked against
+    (:class:`Asked`: the exact ones from ``report``, or the task's graphical method's);
+    ``points``, ``links``: those a kinematics assignment names (by default every moving point
     and every link but the frame and the driving one); an exact zero (see :data:`ZERO`) is
     given, not asked."""
     kind = kind_of(scene)
     if kind == "gears":
         return tuple(_gears(scene, report))
     if kind == "dynamics":
-        return tuple(_dynamics(report))
+        return tuple(_dynamics(scene, report))
+    if kind == "balancing":
+        return tuple(_balancing(scene, report))
     pos = report["positions"][0]
     if kind == "forces":
         return tuple(_forces(scene, pos))
@@ -259,6 +296,8 @@ def task_gap(scene: Scene, items: tuple[Asked, ...]) -> str:
             return "nothing to find: every speed is 0 (the input stands); give a nonzero input speed"
         if kind == "dynamics":
             return "nothing to find: its loads do no work over the cycle and need no flywheel; give it loads"
+        if kind == "balancing":
+            return "nothing to find: the rotor is balanced already (no plane needs a mass); change its masses or angles"
         return (f"nothing to find: every asked quantity is 0 (the mechanism is at rest); give a nonzero {speed} (or "
                 f"{rate})")
     names = TASK_NAMES.get(kind, ())

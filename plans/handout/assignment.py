@@ -8,7 +8,9 @@ framed areas where the student draws.
 - dynamics: the scheme at the cycle's first position, the loads (a load that follows the cycle
   as its table), the mean speed and δ; areas for the diagrams and Wittenbauer's diagram;
 - gears: the train's side and end views with its teeth and the input speeds, the rest of the
-  speed table empty, the pictures' room left blank.
+  speed table empty, the pictures' room left blank;
+- balancing: the rotor's shaft, end view and table of masses; areas for the couple and force
+  polygons (:mod:`.rotor_sheet`).
 
 Knows :mod:`.variants`, :mod:`.solving`, the constructions and the drawing (imported only when a
 sheet is drawn); must not import the writing, the index, the random draws or the command line.
@@ -20,6 +22,7 @@ import math
 
 from ..scene import Scene
 from .asked import Asked, asked, kind_of
+from .rotor_sheet import rotor_cells, rotor_task
 from .solving import variant_data
 from .variants import Drawn, Handout
 
@@ -126,6 +129,8 @@ def task_text(scene: Scene, asked: tuple[Asked, ...], laws: list[str], at: str |
     ``at``: the position a forces assignment's answers are for, named instead of "the given
     position" (``φ_{1} = 60° (the first given position)``)."""
     kind = kind_of(scene)
+    if kind == "balancing":
+        return rotor_task(scene)
     if kind == "gears":
         return (f"Task: draw the linear- and angular-velocity pictures of the train to scale; find {_names(asked)} "
                 "(speeds in rpm, + in the sense of the input) and check them by Willis' formula.")
@@ -142,8 +147,10 @@ def task_text(scene: Scene, asked: tuple[Asked, ...], laws: list[str], at: str |
         aim = ("the flywheel's moment of inertia J_{fw} on link " + j + " that keeps the speed within the given δ"
                if fw.symbol == "J_{fw}" else "the coefficient of speed fluctuation δ reached with the given flywheel")
         text = (f"Task: over the cycle's positions find the reduced moment of the loads and the reduced moment of "
-                f"inertia on link {j}; draw the works' diagrams (by graphical integration), the kinetic energy's "
-                f"change and Wittenbauer's diagram; find the constant driving moment M_{{d}} and {aim}.")
+                f"inertia on link {j}; draw the works' diagrams (by graphical integration by chords: over each "
+                f"interval between two positions the ordinate of M_r at its middle), the kinetic energy's change and "
+                f"Wittenbauer's diagram through the positions' points; find the constant driving moment M_{{d}} and "
+                f"{aim}.")
     return " ".join([text, *laws])
 
 
@@ -191,6 +198,8 @@ def given_and_task(h: Handout, d: Drawn, asked: tuple[Asked, ...]) -> tuple[list
         cells += [f"n_{{{name}}} = {n:g} rpm" for name, n in g.inputs]
         cells += [f"n_{{{name}}} = 0 (held)" for name in g.fixed]
         return cells, f"{task_text(scene, asked, [])} {TYPING}"
+    if h.rotor:
+        return rotor_cells(scene), f"{rotor_task(scene)} {TYPING}"
     lengths = variant_data(h, d.variant).get("lengths")
     if h.kind == "kinematics":
         return given_cells(scene, lengths), f"{_kinematics_task(d, asked)} {TYPING}"
@@ -220,6 +229,10 @@ def _assignment(h: Handout, d: Drawn, asked: tuple[Asked, ...]) -> tuple[str, ..
     variant = d.name.replace("variant-", "variant ")
     if h.train:
         return (_train_sheet(d, asked, variant),)
+    if h.rotor:
+        from .rotor_sheet import rotor_sheets
+
+        return rotor_sheets(d.scene, d.sheets.sheets["balancing"].svg, variant)
     from ..constructions.scheme import scheme
     from ..drawing.assignment import draw_assignment
 

@@ -5,9 +5,10 @@ does not assemble or misses the margin drawn again.
 Lengths are drawn link by link (:func:`length_plan`): the points of a link that lie on one line
 in the base (a centre of mass on its rod, a pin on a bar) stay on it — of the lengths between
 them only the longest (the bar) is drawn, the others keep their ratio to it — and every other
-length of the link is drawn on its own, so a plate keeps its shape within ±LENGTH_SPREAD.
+length of the link is drawn on its own, so a plate keeps its shape within ±LENGTH_SPREAD. A
+gear train's teeth and a rotor's masses (:mod:`.rotor`) are drawn their own ways.
 
-Knows :mod:`.variants` and :mod:`.solving`; must not import the writing, the index page, the
+Knows :mod:`.variants`, :mod:`.solving` and :mod:`.rotor`; must not import the writing, the index page, the
 drawing or the command line.
 """
 
@@ -30,6 +31,7 @@ from ..scene.sketch import length_points
 from ..scene.values import MIN_RATE
 from .solving import (LINE_RTOL, VariantError, base_mechanism, group_margins, short_of, solve_variant, turns_fully,
                       variant_gap)
+from .rotor import balancing_gap, check_rotor_base, draw_rotor
 from .variants import (ANGLE_STEP_DEG, LENGTH_SPREAD, MARGIN_SIN, MAX_TRIES, SPEED_RANGE, SPEED_SERIES, Drawn,
                        Handout, Variant, read_base)
 
@@ -104,6 +106,8 @@ def _draw(h: Handout, rng: np.random.Generator, number: int, plan: Mapping[str, 
     up to the bar's within an ulp, so the scene puts the point on it."""
     if h.train:
         return _draw_train(h, rng, number)
+    if h.rotor:
+        return draw_rotor(h, rng, number)
     base_lengths = h.base_data.get("lengths", {})
     factors: dict[str, float] = {}
     for name in base_lengths:
@@ -172,7 +176,8 @@ def _draw_train(h: Handout, rng: np.random.Generator, number: int) -> Variant:
 _CAUSES = {"build": "had lengths that form no link", "assembly": "did not assemble, or were singular, at the "
            "drawn position", "margin": "came closer to a singular position than the margin, or their crank did not turn fully",
            "shape": "changed a link's shape", "empty": "left their task nothing to find (at rest, or the balancing "
-           "element 0 at the drawn position)", "stroke": "put the output off the stroke its working force acts on"}
+           "element 0 at the drawn position)", "stroke": "put the output off the stroke its working force acts on",
+           "ratio": "needed a balancing mass outside 0.05…20 × the base's"}
 
 
 def _none_works(h: Handout, causes: dict[str, list]) -> SceneError:
@@ -190,6 +195,7 @@ def _none_works(h: Handout, causes: dict[str, list]) -> SceneError:
                           key="drive.start")
     fixes = {"empty": "the drawn variants leave the task nothing to find: check the base scene's loads and drive",
              "stroke": "its working force acts on too little of the turn: check the force's stroke and from",
+             "ratio": "the drawn masses rarely balance with masses of the base's size: check its balancing radii",
              "shape": "the base's links cannot keep their shapes with their lengths drawn: give a centre of mass on a "
                       "bar by its distances to both ends"}
     if top in _CAUSES:
@@ -221,7 +227,10 @@ def _off_stroke(h: Handout, d: Drawn) -> str:
 
 def _at_rest(h: Handout, base: Drawn) -> None:
     """Refuse a base whose variants would all have nothing to find: at rest (a zero speed is
-    drawn as zero) and asking nothing (:func:`~.solving.variant_gap`)."""
+    drawn as zero) and asking nothing (:func:`~.solving.variant_gap`); a rotor whose base needs
+    no balancing mass in a plane (:func:`~.rotor.check_rotor_base`)."""
+    if h.rotor:
+        return check_rotor_base(h, base.sheets.report)
     if h.train:
         inputs = h.base_data["gears"].get("input", {})
         still, key = all(float(n) == 0.0 for n in inputs.values()), f"gears.input.{next(iter(inputs), '')}"
@@ -267,11 +276,12 @@ def random_variants(path: str | Path, count: int, seed: int, *, margin: float = 
                 redraws += 1
                 continue
             short = short_of(d.sheets, margins) or (turns_fully(d.sheets) if turning else "")
-            off = "" if short else _off_stroke(h, d)
+            off = "" if short else _off_stroke(h, d) or balancing_gap(h, base.report, d)
             if not short and not off:
                 drawn.append(d)
                 break
-            causes.setdefault("stroke" if off else "margin", [0, off or f"{d.name}: {short}"])[0] += 1
+            cause = "margin" if short else "ratio" if h.rotor else "stroke"
+            causes.setdefault(cause, [0, off or f"{d.name}: {short}"])[0] += 1
             redraws += 1
         else:
             raise _none_works(h, causes)

@@ -11,8 +11,8 @@ the key's values and a page per key sheet. The sheets are ``<img>`` of the SVG f
 handout gives the same bytes.
 
 Knows :mod:`.asked` (an asked quantity), :mod:`.variants` (the handout, its solved variants, the
-margins' wording) and the export's sheet size; must not import the solving, the random draws,
-the writing or the command line.
+margins' wording), :mod:`.rotor`'s bounds and the export's sheet size; must not import the
+solving, the random draws, the writing or the command line.
 """
 
 from __future__ import annotations
@@ -23,7 +23,8 @@ from typing import Mapping, Sequence
 
 from ..export import sheet_size_mm
 from .asked import Asked, symbol_html
-from .variants import Drawn, Handout, margin_text
+from .rotor import ANGLE_STEP_DEG, BALANCING_RANGE, MASS_SPREAD
+from .variants import LENGTH_SPREAD, Drawn, Handout, margin_text
 
 __all__ = ["index_html", "CSS", "page_css", "ASSIGNMENT_MM"]
 
@@ -114,10 +115,19 @@ def _values_table(report: dict, angular: bool, drive: str) -> str:
 
 
 def _asked_table(asked: Sequence[Asked]) -> str:
-    """What the assignment asks, with the key's exact values."""
-    rows = ["<tr><th>asked</th><th>value</th><th>unit</th><th>what</th></tr>"]
-    rows += [f'<tr><td>{symbol_html(a.symbol)}</td><td class="n">{a.value:.6g}</td><td>{_e(a.unit)}</td>'
-             f"<td>{_e(a.what)}</td></tr>" for a in asked]
+    """What the assignment asks, with the values it is marked against (the key's exact values,
+    or a graphical method's with the exact beside them) and, when stated, the drawing's
+    precision of each."""
+    exact = any(a.exact is not None for a in asked)
+    precise = any(a.precision > 0.0 for a in asked)
+    rows = ["<tr><th>asked</th><th>value</th>" + ("<th>exact</th>" if exact else "")
+            + ("<th>drawing ±</th>" if precise else "") + "<th>unit</th><th>what</th></tr>"]
+    for a in asked:
+        how = f" ({_e(a.method)})" if a.method else ""
+        rows.append(f'<tr><td>{symbol_html(a.symbol)}</td><td class="n">{a.value:.6g}</td>'
+                    + (f'<td class="n">{a.exact:.6g}</td>' if a.exact is not None else "<td></td>" if exact else "")
+                    + (f'<td class="n">{a.precision:.2g}</td>' if precise else "")
+                    + f"<td>{_e(a.unit)}</td><td>{_e(a.what)}{how}</td></tr>")
     return "<table>\n" + "\n".join(rows) + "\n</table>"
 
 
@@ -137,6 +147,18 @@ def _train_rows(h: Handout, drawn: Sequence[Drawn]) -> tuple[str, list[str]]:
     return head, rows
 
 
+def _rotor_rows(h: Handout, drawn: Sequence[Drawn]) -> tuple[str, list[str]]:
+    """A rotor's cover table: a column a mass (m, r, θ, plane)."""
+    count = len(h.base_data["rotor"]["masses"])
+    head = "".join(f"<th>mass {k + 1}: m, r, θ, plane</th>" for k in range(count))
+    rows = []
+    for d in drawn:
+        rows.append("".join(f'<td class="n">{m.mass:g} kg, {m.radius:g} m, {m.angle:g}°'
+                            + (f", {m.plane:g} m" if m.plane is not None else "") + "</td>"
+                            for m in d.scene.rotor.masses))
+    return head, rows
+
+
 def index_html(h: Handout, drawn: Sequence[Drawn], *, margin: float | None = None,
                asked: Sequence[Sequence[Asked]] = (), assignments: Sequence[Mapping[str, str]] = ()) -> str:
     """The index page's text (see the module docstring); ``asked``: what each variant's
@@ -146,6 +168,8 @@ def index_html(h: Handout, drawn: Sequence[Drawn], *, margin: float | None = Non
     gear sheet, a linkage's :data:`ASSIGNMENT_MM`)."""
     if h.train:
         return _page(h, drawn, margin, asked, assignments, *_train_rows(h, drawn))
+    if h.rotor:
+        return _page(h, drawn, margin, asked, assignments, *_rotor_rows(h, drawn))
     drive = str(h.base_data["drive"]["link"])
     sym = (f"φ<sub>{_e(drive)}</sub>, °", f"ω<sub>{_e(drive)}</sub>, rad/s", f"ε<sub>{_e(drive)}</sub>, rad/s²") \
         if h.angular else ("s, m", "v, m/s", "a, m/s²")
@@ -170,7 +194,7 @@ def _assignment_sheets(d: Drawn, given: Mapping[str, str] | None) -> list[tuple[
 
 def _page(h: Handout, drawn: Sequence[Drawn], margin: float | None, asked: Sequence[Sequence[Asked]],
           assignments: Sequence[Mapping[str, str]], head: str, rows: list[str]) -> str:
-    drive = "" if h.train else str(h.base_data["drive"]["link"])
+    drive = str(h.base_data.get("drive", {}).get("link", ""))
     tasks = [_assignment_sheets(d, assignments[k] if k < len(assignments) else None) for k, d in enumerate(drawn)]
     sizes = [size for sheets in tasks for _, size in sheets] + [_size(s.svg) for d in drawn for s in d.sheets]
     out = ["<!DOCTYPE html>", '<html lang="en">', "<head>", '<meta charset="utf-8">',
@@ -184,6 +208,12 @@ def _page(h: Handout, drawn: Sequence[Drawn], margin: float | None, asked: Seque
                    "external wheel at least 17: none undercut), a central wheel's teeth closing the coaxial condition "
                    "of its carrier, the input speeds from a standard series; every variant meets the train's "
                    "coaxial, assembly and neighbourhood conditions.</p>")
+    elif h.seed is not None and h.rotor:
+        lo, hi = BALANCING_RANGE
+        out.append(f"<p>Drawn at random with seed {h.seed}: each mass within ±{MASS_SPREAD:.0%} of the base's, each "
+                   f"radius within ±{LENGTH_SPREAD:.0%}, the angles in {ANGLE_STEP_DEG:g}° steps over the turn, the "
+                   "masses' planes moved along the shaft in the base's order (the balancing planes kept); every "
+                   f"variant's balancing masses lie within {lo:g}…{hi:g} × the base's.</p>")
     elif h.seed is not None:
         margin = h.margin if margin is None else margin
         kept = "" if margin is None else (

@@ -11,11 +11,15 @@ CDATA) holds:
 - the given data and the task, as text, with how to type a number and the position the fields
   are for (the first given one);
 - one NUMERICAL field a quantity the assignment asks (:mod:`.asked`):
-  ``{1:NUMERICAL:=-52.2256:1.04452}`` — the exact value to :data:`ANSWER_DIGITS` significant
-  digits (what Moodle's review shows as the correct answer) and an absolute tolerance
-  ``tolerance`` × |value| + the rounding, rounded up: every response within ``tolerance`` of the
-  exact value is right (Moodle's Cloze NUMERICAL takes an absolute, "nominal", tolerance t:
-  a response r is right when |r − a| ≤ t + 10⁻¹⁴·max(t, |a|)).
+  ``{1:NUMERICAL:=-52.2256:1.04452}`` — the value it is marked against (the exact one, or a
+  graphical task's method at the task's positions: :class:`~.asked.Asked`) to
+  :data:`ANSWER_DIGITS` significant digits (what Moodle's review shows as the correct answer)
+  and an absolute tolerance (:func:`field_tolerance`: ``tolerance`` × |value|, never below the
+  drawing's precision; an angle its precision alone) + the rounding, rounded up: every response
+  within that of the value is right (Moodle's Cloze NUMERICAL takes an absolute, "nominal",
+  tolerance t: a response r is right when |r − a| ≤ t + 10⁻¹⁴·max(t, |a|)). An angle within its
+  tolerance of 0° or 360° has a second right answer a turn away (``=359:2~=-1:2``), so either
+  way of writing the direction is right.
 
 Import in Moodle: Question bank → Import → "Moodle XML format", choose the file, keep "Get
 category from file" ticked; the questions land in a category named after the handout, one
@@ -41,11 +45,12 @@ from typing import Sequence
 from ..errors import OutputError
 from ..export import svg_to_png
 from .asked import Asked, symbol_html
+from .graphical import READ_MM
 from .assignment import answers_at, assignment_svg, given_and_task
 from .variants import Drawn, Handout
 
 __all__ = ["DEFAULT_TOLERANCE", "MIN_TOLERANCE", "ANSWER_DIGITS", "PNG_DPI", "UPLOAD_LIMIT", "parse_tolerance",
-           "answer_text", "cloze_field", "check_bank_path", "size_warning", "moodle_xml"]
+           "answer_text", "field_tolerance", "cloze_field", "check_bank_path", "size_warning", "moodle_xml"]
 
 #: The default relative tolerance of every field (2 %).
 DEFAULT_TOLERANCE = 0.02
@@ -89,11 +94,27 @@ def _up(x: float) -> str:
     return f"{float(up):.{ANSWER_DIGITS}g}"      # the same digits (a carry's 10.0000 as 10), read back ≥ x
 
 
+def field_tolerance(a: Asked, tolerance: float) -> float:
+    """The half-width a field of ``a`` accepts around its value (before the answer's rounding):
+    ``tolerance`` × |value|, or the drawing's precision when that is wider; an angle's precision
+    alone (a share of an angle's value is no measure of how well a direction is drawn)."""
+    return a.precision if a.angle else max(tolerance * abs(a.value), a.precision)
+
+
 def cloze_field(a: Asked, tolerance: float, weight: int = 1) -> str:
     """The Cloze NUMERICAL field of ``a``: its value to :data:`ANSWER_DIGITS` digits, and the
-    absolute tolerance ``tolerance`` × |value| widened by that rounding (rounded up)."""
+    absolute tolerance :func:`field_tolerance` widened by that rounding (rounded up); an angle
+    near 0° or 360° (within that tolerance) also right a turn away."""
     answer = answer_text(a.value)
-    return f"{{{weight}:NUMERICAL:={answer}:{_up(tolerance * abs(a.value) + abs(a.value - float(answer)))}}}"
+    t = field_tolerance(a, tolerance)
+    alternatives = [f"={answer}:{_up(t + abs(a.value - float(answer)))}"]
+    if a.angle:
+        for turn in (-360.0, 360.0):
+            other = a.value + turn
+            if -t < other < 360.0 + t:
+                text = answer_text(other)
+                alternatives.append(f"={text}:{_up(t + abs(other - float(text)))}")
+    return f"{{{weight}:NUMERICAL:{'~'.join(alternatives)}}}"
 
 
 def check_bank_path(bank: str, out: str) -> None:
@@ -147,6 +168,30 @@ def _cdata(text: str) -> str:
     return "<![CDATA[" + text.replace("]]>", "]]]]><![CDATA[>") + "]]>"
 
 
+def _within(a: Asked, tolerance: float) -> str:
+    """What a row adds when its field is not marked ±``tolerance`` of an exact value: the method
+    its value is, and the margin when the drawing's precision widens it (or an angle's)."""
+    out = f"; the value of {a.method}" if a.method else ""
+    t = field_tolerance(a, tolerance)
+    if a.angle or t > tolerance * abs(a.value):
+        out += f"; accepted within ±{t:.2g}" + ("°" if a.unit == "°" else "" if a.unit == "—" else f" {a.unit}")
+    return html.escape(out)
+
+
+def _marking(asked: Sequence[Asked], tolerance: float) -> str:
+    """The sentence saying how the fields are marked."""
+    if not any(a.method or a.angle or a.precision > tolerance * abs(a.value) for a in asked):
+        return f"Each value is accepted within ±{tolerance * 100:g} % of the exact one."
+    out = (f"Each value is accepted within ±{tolerance * 100:g} % of the key's value, or within what a drawing read "
+           f"to ±{READ_MM:g} mm at the key's scales gives where that is wider (its row says so)")
+    if any(a.angle for a in asked):
+        out += "; an angle within the margin its row gives, either side of 0°"
+    if any(a.method for a in asked):
+        out += ("; a graphical task's value is what its method gives at the positions the task gives (the answer "
+                "key's dashed chords), not the exact value")
+    return html.escape(out + ".")
+
+
 def _question(h: Handout, d: Drawn, asked: Sequence[Asked], tolerance: float, svg: str) -> list[str]:
     """Variant ``d``'s Cloze question, its assignment sheet ``svg`` embedded as a PNG."""
     image = f"{d.name}-assignment.png"
@@ -154,7 +199,7 @@ def _question(h: Handout, d: Drawn, asked: Sequence[Asked], tolerance: float, sv
     cells, task = given_and_task(h, d, tuple(asked))
     at = answers_at(d)
     rows = "".join(f"<tr><td>{symbol_html(a.symbol)}</td><td>{cloze_field(a, tolerance)}</td><td>{html.escape(a.unit)}"
-                   f"</td><td>{html.escape(a.what)}</td></tr>" for a in asked)
+                   f"</td><td>{html.escape(a.what)}{_within(a, tolerance)}</td></tr>" for a in asked)
     head = f"your value at {symbol_html(at)}" if at else "your value"
     body = (f"<p><strong>{html.escape(h.title)}, {html.escape(d.name.replace('-', ' '))}</strong></p>"
             f'<p><img src="@@PLUGINFILE@@/{image}" alt="{html.escape(d.name)}: assignment sheet" '
@@ -162,7 +207,7 @@ def _question(h: Handout, d: Drawn, asked: Sequence[Asked], tolerance: float, sv
             f"<p>Given: {'; '.join(symbol_html(c) for c in cells)}.</p>"
             f"<p>{symbol_html(task)}</p>"
             f"<table><tr><th>quantity</th><th>{head}</th><th>unit</th><th></th></tr>{rows}</table>"
-            f"<p>Each value is accepted within ±{tolerance * 100:g} % of the exact one.</p>")
+            f"<p>{_marking(asked, tolerance)}</p>")
     name = f"{h.title}: {d.name}"
     return ['  <question type="cloze">',
             f"    <name><text>{html.escape(name, quote=False)}</text></name>",

@@ -52,7 +52,8 @@ class VariantError(SceneError):
 
 
 def variant_data(h: Handout, v: Variant) -> dict:
-    """The base scene's TOML data with the variant's lengths and drive values."""
+    """The base scene's TOML data with the variant's lengths and drive values (a gear train's
+    teeth and input speeds, a rotor's masses)."""
     data = copy.deepcopy(dict(h.base_data))
     if h.train:
         wheels = data["gears"]["wheels"]
@@ -60,6 +61,10 @@ def variant_data(h: Handout, v: Variant) -> dict:
             wheels[name] = {**wheels[name], "teeth": z}
         if v.inputs:
             data["gears"]["input"] = {**data["gears"].get("input", {}), **v.inputs}
+        return data
+    if h.rotor:
+        masses = [{**m, **(v.masses[k] if k < len(v.masses) else {})} for k, m in enumerate(data["rotor"]["masses"])]
+        data["rotor"] = {**data["rotor"], "masses": masses}
         return data
     if v.lengths:
         data["lengths"] = {**data.get("lengths", {}), **v.lengths}
@@ -83,7 +88,7 @@ def variant_scene(h: Handout, v: Variant) -> Scene:
     except SceneError as exc:
         sub = exc.key or ""
         for table, alias in (("drive.", ""), ("lengths.", "lengths."), ("gears.wheels.", "teeth."),
-                         ("gears.input.", "input.")):
+                         ("gears.input.", "input."), ("rotor.masses", "masses")):
             if sub.startswith(table):
                 sub = alias + sub[len(table):]
         raise VariantError(f"{exc.message} ({h.name(v)})", file=file, key=f"{key}.{sub}" if sub else key,

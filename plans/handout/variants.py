@@ -20,7 +20,8 @@ from ..scene.checks import SHOW
 from .asked import kind_of
 
 __all__ = ["MARGIN_SIN", "LENGTH_SPREAD", "ANGLE_STEP_DEG", "SPEED_SERIES", "SPEED_RANGE",
-           "MAX_VARIANTS", "MAX_TRIES", "Variant", "Handout", "Drawn", "read_base", "read_variants", "margin_text"]
+           "MAX_VARIANTS", "MAX_TRIES", "MAX_ROTOR_MASSES", "Variant", "Handout", "Drawn", "read_base",
+           "read_variants", "margin_text"]
 
 #: Margin of the random mode: every asked position of every drawn variant has, in every group,
 #: |condition| ≥ this (``Motion.sines``: the sine of a class II group's transmission angle, and
@@ -39,6 +40,9 @@ SPEED_RANGE = (0.5, 2.0)
 MAX_VARIANTS = 999
 #: Draws tried for one random variant before giving up.
 MAX_TRIES = 200
+#: Most masses of a rotor's handout: its assignment sheet's table holds 20 rows of 7 mm beside
+#: the shaft and the task.
+MAX_ROTOR_MASSES = 20
 
 #: The tables only a scene has (a linkage, a gear train, a gear pair, a synthesis, a rotor): a file
 #: with one of them and no base is a scene given where a variants file was expected.
@@ -58,6 +62,7 @@ class Variant:
     rate: float | None = None
     teeth: Mapping[str, int] = field(default_factory=dict)     # a gear train's: wheel → teeth
     inputs: Mapping[str, float] = field(default_factory=dict)  # a gear train's: link → rpm
+    masses: tuple[Mapping[str, float], ...] = ()   # a rotor's: the k-th changes the base's k-th mass
 
 
 @dataclass(frozen=True)
@@ -81,6 +86,11 @@ class Handout:
     def train(self) -> bool:
         """Whether the base is a gear train alone (its variants set teeth and input speeds)."""
         return self.kind == "gears"
+
+    @property
+    def rotor(self) -> bool:
+        """Whether the base is a rotor ([rotor]: its variants set the masses)."""
+        return self.kind == "balancing"
 
     @property
     def angular(self) -> bool:
@@ -130,6 +140,13 @@ def read_base(path: str | Path, *, cited: tuple[str, str] | None = None) -> Hand
         kind = kind_of(scene)
     except SceneError as exc:
         raise SceneError(exc.message, file=str(path), key=exc.key) from None
+    if kind == "balancing" and "balancing" not in scene.draw:
+        raise SceneError("a rotor's answer key is its -balancing sheet (the couple and force polygons): add draw = "
+                         '["balancing"] to [plans]', file=str(path), key="plans.draw")
+    if kind == "balancing" and len(scene.rotor.masses) > MAX_ROTOR_MASSES:
+        raise SceneError(f"{len(scene.rotor.masses)} masses; a rotor's assignment sheet lists at most "
+                         f"{MAX_ROTOR_MASSES}: give a rotor with fewer masses for a handout", file=str(path),
+                         key="rotor.masses")
     return Handout(base=path, base_text=text, base_data=data, variants=(), title=scene.title, kind=kind)
 
 
@@ -190,6 +207,8 @@ def _variant(item: Any, k: int, base: Handout, file: str) -> Variant:
         raise SceneError("each [[variant]] entry is a table", file=file, key=key)
     if base.train:
         return _train_variant(item, k, base, file)
+    if base.rotor:
+        return _rotor_variant(item, k, base, file)
     pos, speed, rate = base.keys
     allowed = ("lengths", pos, speed, rate)
     for name in item:
@@ -247,6 +266,38 @@ def _train_variant(item: Mapping[str, Any], k: int, base: Handout, file: str) ->
                              key=f"{key}.teeth.{name}")
     return Variant(number=k + 1, teeth={str(n): int(z) for n, z in teeth.items()},
                    inputs={str(n): _number(v, f"{key}.input.{n}", file) for n, v in speeds.items()})
+
+
+#: What a rotor variant's mass may set (as a [rotor] mass: kg, m, degrees, m along the shaft).
+_MASS_KEYS = ("mass", "radius", "angle", "plane")
+
+
+def _rotor_variant(item: Mapping[str, Any], k: int, base: Handout, file: str) -> Variant:
+    """A rotor's variant: ``masses = [{ mass = 250.0, angle = 30.0 }, …]``, the k-th table
+    changing the base's k-th mass (any of mass, radius, angle, plane; the rest, and the masses
+    after the list's end, keep the base's). The values are checked by the scene's reader."""
+    key = f"variant[{k}]"
+    for name in item:
+        if name != "masses":
+            raise SceneError(f"unknown key {name!r}; a rotor's variant has masses (a list of the base's masses' "
+                             "changes)", file=file, key=f"{key}.{name}")
+    count = len(base.base_data["rotor"]["masses"])
+    masses = item.get("masses", [])
+    if not isinstance(masses, list) or len(masses) > count:
+        raise SceneError(f"masses is a list of at most {count} tables (the base's masses, in order), e.g. masses = "
+                         "[{ mass = 250.0, angle = 30.0 }]", file=file, key=f"{key}.masses")
+    out = []
+    for j, m in enumerate(masses):
+        at = f"{key}.masses[{j}]"
+        if not isinstance(m, Mapping):
+            raise SceneError("each mass is a table of mass, radius, angle, plane, e.g. { mass = 250.0 }", file=file,
+                             key=at)
+        extra = [n for n in m if n not in _MASS_KEYS]
+        if extra:
+            raise SceneError(f"unknown key {extra[0]!r}; a mass has {', '.join(_MASS_KEYS)}", file=file,
+                             key=f"{at}.{extra[0]}")
+        out.append({n: _number(v, f"{at}.{n}", file) for n, v in m.items()})
+    return Variant(number=k + 1, masses=tuple(out))
 
 
 def margin_text(h: Handout) -> str:

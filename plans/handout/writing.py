@@ -2,8 +2,8 @@
 key, its scene file), ``variants.toml``, the base scene's copy and ``index.html``; and the
 progress bar the command line shows meanwhile.
 
-Knows :mod:`.variants`, :mod:`.solving`, :mod:`.toml_text`, :mod:`.assignment`, :mod:`.index`,
-the export and the output; must not import the random draws or the command line.
+Knows :mod:`.variants`, :mod:`.solving`, :mod:`.rotor`'s bounds, :mod:`.toml_text`,
+:mod:`.assignment`, :mod:`.index`, the export and the output; must not import the random draws or the command line.
 """
 
 from __future__ import annotations
@@ -18,6 +18,7 @@ from ..output import check_folder, refuse_inputs, write_files
 from .asked import Asked
 from .assignment import assignment_sheets, variant_asked
 from .index import index_html
+from .rotor import ANGLE_STEP_DEG, BALANCING_RANGE, MASS_SPREAD
 from .solving import variant_data
 from .toml_text import to_toml, toml_value
 from .variants import LENGTH_SPREAD, Drawn, Handout, margin_text
@@ -33,9 +34,12 @@ def _variants_file(h: Handout, base_name: str) -> str:
     (``plans handout`` on it, beside the base scene's copy, gives the same answer keys)."""
     lines = [f"# plans handout: {len(h.variants)} variants of {h.base.name}"]
     if h.seed is not None:
+        lo, hi = BALANCING_RANGE
         lines.append(f"# drawn with --random {len(h.variants)} --seed {h.seed}: " + (
             f"teeth ±{LENGTH_SPREAD:.0%}, none undercut; the coaxial, assembly and neighbourhood conditions kept"
-            if h.train else f"lengths ±{LENGTH_SPREAD:.0%}; every asked position keeps |condition| ≥ the margin of "
+            if h.train else f"masses ±{MASS_SPREAD:.0%}, radii ±{LENGTH_SPREAD:.0%}, angles in {ANGLE_STEP_DEG:g}° "
+            f"steps, the masses' planes moved in the base's order; balancing masses {lo:g}…{hi:g} × the base's"
+            if h.rotor else f"lengths ±{LENGTH_SPREAD:.0%}; every asked position keeps |condition| ≥ the margin of "
             f"each group: {margin_text(h)}"))
     lines += ["", f"base = {toml_value(base_name)}", f"title = {toml_value(h.title)}"]
     for v in h.variants:
@@ -45,6 +49,9 @@ def _variants_file(h: Handout, base_name: str) -> str:
             gears = data["gears"]
             lines += [f"teeth = {toml_value({n: w['teeth'] for n, w in gears['wheels'].items()})}",
                       f"input = {toml_value(dict(gears.get('input', {})))}"]
+            continue
+        if h.rotor:
+            lines.append(f"masses = {toml_value(data['rotor']['masses'])}")
             continue
         if data.get("lengths"):
             lines.append(f"lengths = {toml_value(data['lengths'])}")
