@@ -13,8 +13,7 @@ import pytest
 from scipy.optimize import least_squares
 
 import plans
-from plans.errors import SceneError
-from plans.kinematics.assemblies import SAME_RTOL, assemblies, dyad_pairs, group_assemblies
+from plans.kinematics.assemblies import SAME_RTOL, dyad_pairs, group_assemblies
 from plans.kinematics.generic import GroupEquations
 from plans.kinematics.state import LinkState
 from plans.pipeline import record_stages, solve_scene
@@ -247,14 +246,6 @@ def test_not_asked_not_computed():
     with record_stages() as stages:
         plans.render(EXAMPLES / "four_bar.toml")
     assert "assemblies" not in stages
-
-
-def test_prismatic_complex_group_refused():
-    motion = _motion("triad_sliding_rod")
-    g = next(g for g in motion.structure.groups if not isinstance(g, Group))
-    with pytest.raises(SceneError, match=r"not yet enumerated"):
-        assemblies(motion, 0)
-    assert g.name in str(pytest.raises(SceneError, assemblies, motion, 0).value)
 
 
 #: Sketch points of a triad with six real assemblies at the sketch (found by a random search of

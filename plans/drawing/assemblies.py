@@ -1,7 +1,7 @@
 """The ``-assemblies`` sheet (:mod:`plans.constructions.assembly_sheet`): for each class III/IV
 group a caption and its assemblies side by side (rows of as many as the sheet holds), each a
 small scheme — links thick, the outer pins as fixed joints (a circle over a short hatched base),
-every point lettered — numbered under it with its condition figure, the chosen (drawn) one in a
+sliding pairs as on the scheme sheet (blocks, hatched frame guides, slots), every point lettered — numbered under it with its condition figure, the chosen (drawn) one in a
 frame; a class II group's count written as a line of text.
 
 Every small scheme is a ``<g data-plan="scheme" data-mu="μl">`` (``plans check`` reports the sheet
@@ -10,9 +10,12 @@ as a scheme: nothing to measure), with ``data-assembly`` its number and ``data-c
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from ..constructions.assembly_sheet import AssemblySheet, SmallScheme
 from .canvas import Canvas, fmt
 from .marks import markup
+from .scheme import block_corners, frame_guide
 from .sheet import FORMATS, TitleBlock, choose_format, new_sheet, note_lines
 from .style import Style
 from .svg import Heading
@@ -91,12 +94,24 @@ def _scheme(dwg, canvas: Canvas, s: SmallScheme, at: tuple[float, float], ident:
     g.attribs["data-assembly"] = str(s.number)
     g.attribs["data-chosen"] = "true" if s.chosen else "false"
     labels = dwg.g(id=f"{ident}-labels", fill=style.colour)
+    for k, gd in enumerate(s.guides):        # under the links, as on the scheme sheet
+        gd = replace(gd, start=p(gd.start), end=p(gd.end), stem=None if gd.stem is None else tuple(map(p, gd.stem)))
+        w = style.vector if gd.fixed else style.link
+        canvas.line(g, gd.start, gd.end, width=w, stroke_width=fmt(w, 3), id=f"{ident}-guide{k}")
+        if gd.stem is not None:
+            canvas.line(g, gd.stem[0], gd.stem[1], width=style.link, stroke_width=fmt(style.link, 3),
+                        id=f"{ident}-stem{k}")
+        if gd.fixed:
+            frame_guide(canvas, g, gd, k, ident, style)
     for k, (link, pts) in enumerate(s.bars):
         pts = [p(q) for q in pts]
         if len(pts) > 2:
             pts = pts + pts[:1]
         for j in range(len(pts) - 1):
             canvas.line(g, pts[j], pts[j + 1], width=style.link, stroke_width=fmt(style.link, 3), id=f"{ident}-b{k}-{j}")
+    for b in s.blocks:
+        canvas.polygon(g, block_corners(replace(b, center=p(b.center))), width=style.link, fill="#fff",
+                       stroke_width=fmt(style.link, 3), id=f"{ident}-block{b.link}")
     pins = {n for n, _ in s.pins}
     for k, (name, xy) in enumerate(s.points):
         q = p(xy)

@@ -7,9 +7,11 @@ formula held in the poses the motion gives them (seed 002's analytical method).
   system (6)); the remaining angle ψ follows from quadratics in u = tan(ψ/2) (its (7)), whose
   discriminants decide reality. The residual f(φ) left by the elimination is a trigonometric
   polynomial of degree ≤ 4; its real roots are all bracketed by a certified search
-  (:func:`_roots`), refined by Brent's method, completed by the quadratics and polished by a
-  Newton step on the group's pair equations (:class:`~plans.kinematics.generic.GroupEquations`).
-  Groups with a prismatic pair are refused (a SceneError naming the group).
+  (:func:`.trig_roots.trig_roots`), refined by Brent's method, completed by the quadratics and
+  polished by a Newton step on the group's pair equations (:class:`~plans.kinematics.generic.GroupEquations`).
+* Class III and IV groups with a sliding pair: the same, on the base link's pose (class III) or
+  with a sliding link's travel mapped onto the circle by the half-angle substitution (class IV),
+  in :mod:`.assemblies_prismatic`.
 
 Lengths in metres, angles in radians, counter-clockwise positive; a link's pose maps a local
 (sketch) point x to o + R(θ)·x, as everywhere in plans.kinematics.
@@ -30,6 +32,8 @@ from .groups import candidates
 from .special import condition
 from .state import LinkState
 from .tolerances import ASSEMBLY_RTOL
+from .trig_roots import GRID, cramer_residual, half_angle_roots, trig_roots
+from .assemblies_prismatic import sliding_poses
 from .. import linalg as la
 
 __all__ = ["Assembly", "GroupAssemblies", "assemblies", "group_assemblies", "dyad_pairs", "SAME_RTOL",
@@ -37,11 +41,6 @@ __all__ = ["Assembly", "GroupAssemblies", "assemblies", "group_assemblies", "dya
 
 #: Two poses are one assembly when no point of the group differs by more than this × size.
 SAME_RTOL = 1e-9
-#: Cells of the first grid over φ ∈ [−π, π) (each cell is then refined or excluded, see :func:`_roots`).
-GRID = 720
-#: Smallest cell of the certified search, rad: a cell this small that can hold a root of f without
-#: a sign change is a (near-)tangency, tried as a candidate root.
-MIN_CELL = 1e-9
 #: An assembly's pair equations must hold to this × size after polishing (m; angles × size).
 POLISH_RTOL = 1e-12
 
@@ -129,8 +128,8 @@ def group_assemblies(motion, g: Group | ComplexGroup, i: int) -> GroupAssemblies
 def _condition(mech, g, known: Mapping[str, LinkState], pose: Mapping[str, LinkState]) -> float | None:
     """A class III group's condition figure at ``pose`` (the other links at ``known``); None for
     other groups."""
-    if not isinstance(g, ComplexGroup) or g.base is None:
-        return None
+    if not isinstance(g, ComplexGroup) or g.base is None or any(r.form == "PP" for r in g.rods):
+        return None         # (a rod sliding on both its pairs has no axis)
     return float(condition(g, mech, {**known, **pose})[0])
 
 
@@ -183,39 +182,28 @@ class _Elimination:
 
 
 def residual_function(e: _Elimination, size: float):
-    """f(φ) = (N_c² + N_s² − Δ²)/size⁸, Δ = A₀B₁ − A₁B₀, N_c = D₀B₁ − D₁B₀, N_s = A₀D₁ − A₁D₀:
-    zero exactly where the two linear conditions on (cos ψ, sin ψ) have a solution on the unit
-    circle (Cramer's rule: cos ψ = N_c/Δ, sin ψ = N_s/Δ). A, B, D are of degree 1 in cos φ,
-    sin φ, so f is a trigonometric polynomial of degree ≤ 4: at most 8 roots on the circle."""
-    scale = size ** -8
-
-    def f(phi):
-        a, b, d = e.coefficients(np.atleast_1d(np.asarray(phi, dtype=float)))
-        det = a[0] * b[1] - a[1] * b[0]
-        nc = d[0] * b[1] - d[1] * b[0]
-        ns = a[0] * d[1] - a[1] * d[0]
-        return (nc * nc + ns * ns - det * det) * scale
-    return f
+    """f(φ) = (N_c² + N_s² − Δ²)/size⁸ of the two conditions on ψ (:func:`.trig_roots.cramer_residual`):
+    zero exactly where they have a solution on the unit circle. A, B, D are of degree 1 in
+    cos φ, sin φ, so f is a trigonometric polynomial of degree ≤ 4: at most 8 roots on the circle."""
+    return cramer_residual(e.coefficients, size ** -8)
 
 
 def _complex(mech, g: ComplexGroup, known: dict[str, LinkState]) -> list[dict[str, LinkState]]:
-    """Every real assembly of a class III/IV group of revolute pairs (the other links at ``known``)."""
+    """Every real assembly of a class III/IV group (the other links at ``known``): its revolute
+    pairs' elimination here, a sliding pair's in :mod:`.assemblies_prismatic`; each completed
+    pose polished by one Newton step on the group's own pair equations (generic.py)."""
     if any(p.kind != "R" for p in g.pairs):
-        raise SceneError(f"group {g.name} (form {g.form}) has a prismatic pair: its assemblies are not yet enumerated "
-                         "for that form (only class III and IV groups of revolute pairs); leave \"assemblies\" out of "
-                         "draw", key="plans.draw")
-    e = _eliminate(mech, g, known)
-    f = residual_function(e, mech.size)
+        rough = sliding_poses(mech, g, known)
+    else:
+        e = _eliminate(mech, g, known)
+        rough = [_pose(mech, g, e, known, phi, psi) for phi in trig_roots(residual_function(e, mech.size))
+                 for psi in _psi(e, phi)]
     eq = GroupEquations(mech, g.links, g.pairs)
     out = []
-    for phi in _roots(f):
-        for psi in _psi(e, phi):
-            pose = _pose(mech, g, e, known, phi, psi)
-            q = eq.pose(pose)
-            # one polishing Newton step on the group's own pair equations (generic.py)
-            res = eq.newton(q, known)
-            if res.converged and res.residual <= POLISH_RTOL * mech.size:
-                out.append({n: s for n, s in eq.states(res.q, known).items() if n in eq.col})
+    for pose in rough:
+        res = eq.newton(eq.pose(pose), known)
+        if res.converged and res.residual <= POLISH_RTOL * mech.size:
+            out.append({n: s for n, s in eq.states(res.q, known).items() if n in eq.col})
     return out
 
 
@@ -256,87 +244,10 @@ def _eliminate(mech, g: ComplexGroup, known: Mapping[str, LinkState]) -> _Elimin
                         np.array(s), np.array(l), ("pin", px, loc[x][ox.point]))
 
 
-def _roots(f) -> list[float]:
-    """Every real root of the trigonometric polynomial f on [−π, π) (rad).
-
-    Bracketing, certified: f's Fourier coefficients c_k are exact from 64 samples (its degree is
-    ≤ 4, far below the 32 the samples resolve), so |f'| ≤ L = Σ k·|c_k| (every computed k, the
-    zero ones included). A cell [a, b] whose ends have one sign and |f(a)| + |f(b)| > L·(b − a)
-    holds no root (a root t would give |f(a)| ≤ L(t − a) and |f(b)| ≤ L(b − t)). The circle is
-    cut into GRID cells; a cell with a sign change gives a root by Brent's method, an excluded
-    cell none, any other is halved, down to MIN_CELL: what is left is a (near-)double root (a
-    tangency, where two assemblies merge), refined by minimising |f| over the run of such
-    cells, and kept when |f| is rounding there (the completion's polish decides, in the end)."""
-    from scipy.optimize import brentq, minimize_scalar     # only when a scene asks for the assemblies
-
-    n = 64
-    samples = f(-math.pi + 2.0 * math.pi * np.arange(n) / n)
-    c = np.fft.rfft(samples) / n
-    k = np.arange(len(c))
-    lip = float(np.sum(2.0 * k * np.abs(c))) * (1.0 + 1e-9)
-    noise = 1e-12 * float(np.max(np.abs(samples)) + 1e-300)      # f's rounding, relative to its size
-    a = -math.pi + 2.0 * math.pi * np.arange(GRID) / GRID
-    b = a + 2.0 * math.pi / GRID
-    fa, fb = f(a), f(b)
-    roots: list[float] = [float(x) for x in a[fa == 0.0]]
-    leftovers: list[tuple[float, float]] = []
-    while a.size:
-        change = fa * fb < 0.0
-        roots += [brentq(lambda t: float(f(t)[0]), lo, hi, xtol=1e-15, rtol=1e-15) for lo, hi in zip(a[change], b[change])]
-        doubt = ~change & (np.abs(fa) + np.abs(fb) <= lip * (b - a) + noise) & (fb != 0.0)
-        a, b, fa, fb = a[doubt], b[doubt], fa[doubt], fb[doubt]
-        if a.size == 0:
-            break
-        if b[0] - a[0] < MIN_CELL or a.size > 100000:
-            leftovers += list(zip(a, b))
-            break
-        m = 0.5 * (a + b)
-        fm = f(m)
-        roots += [float(x) for x in m[fm == 0.0]]
-        a, b, fa, fb = np.concatenate([a, m]), np.concatenate([m, b]), np.concatenate([fa, fm]), np.concatenate([fm, fb])
-    for lo, hi in _runs(leftovers):
-        sign = 1.0 if f(0.5 * (lo + hi))[0] >= 0.0 else -1.0
-        best = minimize_scalar(lambda t: sign * float(f(t)[0]), bounds=(lo, hi), method="bounded",
-                               options={"xatol": 1e-15})
-        if abs(float(f(best.x)[0])) <= 1e3 * noise:
-            roots.append(float(best.x))
-    return sorted(roots)
-
-
-def _runs(cells: list[tuple[float, float]]) -> list[tuple[float, float]]:
-    """Adjacent cells joined into runs (lo, hi)."""
-    out: list[list[float]] = []
-    for lo, hi in sorted(cells):
-        if out and lo <= out[-1][1] + 1e-15:
-            out[-1][1] = max(out[-1][1], hi)
-        else:
-            out.append([lo, hi])
-    return [(lo, hi) for lo, hi in out]
-
-
 def _psi(e: _Elimination, phi: float) -> list[float]:
-    """ψ at a root φ: the roots of the first condition's quadratic in u = tan(ψ/2) that satisfy
-    the second one (both, where the two conditions coincide)."""
-    a, b, d = (x[:, 0] for x in e.coefficients(np.array([phi])))
-    # Seed 002, (6) → (7): A cos ψ + B sin ψ = D with cos ψ = (1 − u²)/(1 + u²), sin ψ = 2u/(1 + u²)
-    # is (A + D)u² − 2Bu + (D − A) = 0; its discriminant /4, A² + B² − D², decides whether the
-    # condition has real ψ (≥ 0), rounding clipped to 0 (a rod stretched straight).
-    disc = a[0] ** 2 + b[0] ** 2 - d[0] ** 2
-    if disc < -1e-9 * (a[0] ** 2 + b[0] ** 2):
-        return []
-    r = math.sqrt(max(disc, 0.0))
-    out = []
-    for sign in (1.0, -1.0):
-        # u = (B ± √disc)/(A + D) = (D − A)/(B ∓ √disc): whichever form is better conditioned
-        num, den = b[0] + sign * r, a[0] + d[0]
-        alt = (d[0] - a[0], b[0] - sign * r)
-        if math.hypot(*alt) > math.hypot(num, den):
-            num, den = alt
-        psi = 2.0 * math.atan2(num, den)
-        miss = abs(a[1] * math.cos(psi) + b[1] * math.sin(psi) - d[1])
-        if miss <= 1e-6 * (abs(a[1]) + abs(b[1]) + abs(d[1])):
-            out.append(psi)
-    return out
+    """ψ at a root φ: the roots of the first condition's quadratic (7) in u = tan(ψ/2) that
+    satisfy the second one (:func:`.trig_roots.half_angle_roots`)."""
+    return half_angle_roots(*(x[:, 0] for x in e.coefficients(np.array([phi]))))
 
 
 def _placed(theta: float, world: np.ndarray, local: np.ndarray) -> LinkState:
