@@ -5,13 +5,16 @@ speed fluctuation δ (exactly, and by Wittenbauer's energy–mass diagram), and 
 ω1(φ) and ε1(φ) with it.
 
 Angles here are the crank's turned angle θ = sense·(φ − φ_start) in radians (0 … 2π over the
-cycle, growing in the crank's sense of rotation) and moments are taken in that sense (positive
-when they drive), so that work is ∫M dθ whatever way the crank turns. The reported M_r (CCW
-positive) is sense × that.
+cycle, growing in the crank's sense of rotation; 0 … 2π·turns over a cycle of several turns,
+``[dynamics] period``, the linkage repeating every turn and the laws over the period) and
+moments are taken in that sense (positive when they drive), so that work is ∫M dθ whatever way
+the crank turns. The reported M_r (CCW positive) is sense × that. The driving moment is constant
+(the loads' mean) or a law in θ (:mod:`.laws`), whose work over the cycle must balance the loads'.
 
 Exactness: the loads are sampled at the Gauss nodes of panels of at most 1° whose edges
 include every point where a load kinks or jumps (a law's knot crossed by the output's travel,
-the ends of the strokes, the rest points of a force opposing its point's velocity), found by
+the ends of the strokes, the rest points of a force opposing its point's velocity, a row or a
+shape's end of a law in the crank angle, :func:`.laws.law_edges`), found by
 root-finding to ~1e-13 rad; on each panel the samples define a polynomial of degree 7
 (:mod:`.piecewise`), so the integrals and the searches for the largest and smallest values are
 exact to ~1e-13 of their size, far below the 1e-9 asked.
@@ -19,6 +22,7 @@ exact to ~1e-13 of their size, far below the 1e-9 asked.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, replace
 
@@ -31,6 +35,7 @@ from ..kinematics import analyse
 from ..kinematics.cycle import Cycle, output_motion
 from ..kinetostatics import Travel, forces_following
 from ..scene import MIN_RATE, Scene
+from .laws import balanced, check_laws, law_edges, panel_deg, torque_at
 from .piecewise import Piecewise, combine, fit, nodes_of
 from .reduced import Reduced, reduce
 
@@ -70,14 +75,18 @@ class MachineDynamics:
     """One steady cycle of the machine. ``sense`` +1 (CCW) or −1, ``start`` φ at θ = 0 (°),
     ``omega_m`` the mean |ω1|; as functions of θ (:class:`~.piecewise.Piecewise`): ``moment``
     the loads' reduced moment in the sense of rotation, ``inertia`` I_r plus the rotor's,
-    ``slope`` dI/dθ, ``work`` ∫moment dθ, ``energy`` ΔT = work + constant·θ; ``constant`` the
+    ``slope`` dI/dθ, ``work`` ∫moment dθ, ``energy`` ΔT = work + constant·θ (with a driving law,
+    ∫(moment + M_d) dθ); ``constant`` the
     constant moment on the crank (N·m in the sense of rotation: positive a motor, negative a
     consumer when the loads drive, as in an engine); ``at``: M_r, I_r, dI_r/dφ (CCW, as
-    :class:`~.reduced.Reduced`) at the cycle's N positions; ``theta`` those positions' θ;
+    :class:`~.reduced.Reduced`) at the cycle's N positions (N per turn); ``theta`` those positions' θ;
     ``breaks`` the θ where a load kinks; ``flywheel``; ``kinetic0`` T0, T at θ = 0 (J), with the
     flywheel's J, so that ω(θ) = √(2(T0 + ΔT)/(I + J)); ``excess`` e0 = T0 − ½ω_m²·J (J, of the
     size of ΔT) and ``rise`` ω² − ω_m² = 2(e0 + ΔT − ½ω_m²·I)/(I + J) (rad²/s²): the speed's
-    departure from ω_m without the cancellation of T0 + ΔT against T0 when J is large (small δ)."""
+    departure from ω_m without the cancellation of T0 + ΔT against T0 when J is large (small δ);
+    ``period`` the cycle (crank degrees: θ runs over 0 … its radians); ``driving`` the driving
+    law's moment M_d(θ) in the sense of rotation (None: constant, and then ``constant`` is it;
+    with a law ``constant`` is the law's mean)."""
 
     sense: float
     start: float
@@ -96,10 +105,21 @@ class MachineDynamics:
     kinetic0: float
     excess: float
     rise: Piecewise
+    period: float = 360.0
+    driving: Piecewise | None = None
 
     @property
     def J(self) -> float:
         return self.flywheel.inertia_exact
+
+    def driving_moment(self, theta: np.ndarray | float) -> np.ndarray:
+        """M_d (N·m, in the sense of rotation) at θ: the constant moment, or the driving law."""
+        theta = np.asarray(theta, dtype=float)
+        return np.full(theta.shape, self.constant) if self.driving is None else self.driving(theta)
+
+    @functools.cached_property
+    def _driving_work(self) -> Piecewise:
+        return self.driving.integral(0.0)
 
     def omega(self, theta: np.ndarray | float) -> np.ndarray:
         """|ω1| (rad/s) at θ: √(ω_m² + 2(e0 + ΔT − ½ω_m²·I)/(I + J))."""
@@ -111,17 +131,21 @@ class MachineDynamics:
     def epsilon(self, theta: np.ndarray | float) -> np.ndarray:
         """dω/dt in the sense of rotation (rad/s²) at θ: (dΔT/dθ − ½ω²·dI/dθ)/(I + J)."""
         w = self.omega(theta)
-        return (self.moment(theta) + self.constant - 0.5 * w * w * self.slope(theta)) / (self.inertia(theta) + self.J)
+        drive = self.constant if self.driving is None else self.driving(theta)
+        return (self.moment(theta) + drive - 0.5 * w * w * self.slope(theta)) / (self.inertia(theta) + self.J)
 
     def driving_work(self, theta: np.ndarray | float) -> np.ndarray:
-        """A_d: the work of what drives (the constant moment, or the loads of an engine), J."""
+        """A_d: the work of what drives (the constant moment or the driving law, or the loads of
+        an engine), J."""
         theta = np.asarray(theta, dtype=float)
+        if self.driving is not None:
+            return self._driving_work(theta)
         return self.constant * theta if self.constant >= 0.0 else self.work(theta)
 
     def resisting_work(self, theta: np.ndarray | float) -> np.ndarray:
         """A_r: the work done against what resists (the loads, or an engine's consumer), J."""
         theta = np.asarray(theta, dtype=float)
-        return -self.work(theta) if self.constant >= 0.0 else -self.constant * theta
+        return -self.work(theta) if self.constant >= 0.0 or self.driving is not None else -self.constant * theta
 
     def delta_reached(self) -> tuple[float, float, float]:
         """(ω_max, ω_min, δ) of the true speed, found on the cycle (δ = (ω_max − ω_min)/their
@@ -132,10 +156,13 @@ class MachineDynamics:
 def machine_dynamics(scene: Scene, cycle: Cycle) -> MachineDynamics:
     """The steady cycle of ``scene`` (with ``[dynamics]``) over the solved ``cycle``."""
     dyn = scene.dynamics
+    check_laws(scene)
     mech = cycle.motion.mechanism
     structure = cycle.motion.structure
     w1 = float(mech.drive.speed)
     _check_speed(scene, w1)
+    turns = int(round(dyn.period / 360.0))
+    span = 2 * np.pi * turns
     sense = 1.0 if w1 > 0.0 else -1.0
     start = float(cycle.start)
     follows = forces_following(scene, cycle)
@@ -154,7 +181,10 @@ def machine_dynamics(scene: Scene, cycle: Cycle) -> MachineDynamics:
         scale = float(np.max(np.abs(v)))
 
     def solve(theta: np.ndarray, order: int):
-        motion = analyse(mech, structure, phi_of(np.asarray(theta, float)), order=order)
+        theta = np.asarray(theta, float)
+        if turns > 1:                   # the linkage repeats every turn
+            theta = np.mod(theta, 2 * np.pi)
+        motion = analyse(mech, structure, phi_of(theta), order=order)
         travel = None
         if follows:
             out = output_motion(motion, cycle.output.link)
@@ -163,23 +193,37 @@ def machine_dynamics(scene: Scene, cycle: Cycle) -> MachineDynamics:
         return motion, travel
 
     breaks = _breaks(scene, cycle, solve, sense, start)
-    uniform = np.linspace(0.0, 2 * np.pi, int(round(360.0 / PANEL_DEG)) + 1)
+    if turns > 1:
+        breaks = np.concatenate([breaks + 2 * np.pi * k for k in range(turns)])
+    laws = law_edges(scene)
+    breaks = np.unique(np.concatenate([breaks, laws[(laws > 0.0) & (laws < span)]]))
+    panels = int(math.ceil(360.0 * turns / panel_deg(scene, PANEL_DEG) - 1e-9))
+    uniform = np.linspace(0.0, span, panels + 1)
     edges = np.unique(np.concatenate([uniform, breaks]))
     edges = edges[np.concatenate([[True], np.diff(edges) > 1e-12])]
-    edges[-1] = 2 * np.pi
-    motion, travel = solve(nodes_of(edges), 2)
-    red = reduce(motion, scene, travel)
+    edges[-1] = span
+    x = nodes_of(edges)
+    motion, travel = solve(x, 2)
+    red = reduce(motion, scene, travel, theta=x)
     moment = fit(edges, sense * red.moment)
     inertia = fit(edges, red.inertia + dyn.rotor_inertia)
     slope = fit(edges, sense * red.slope)
     work = moment.integral(0.0)
-    constant = -moment.total() / (2 * np.pi)
-    half = 0.5 * np.diff(edges)
-    line = Piecewise(edges, np.column_stack([constant * (edges[:-1] + half), constant * half]))
-    energy = combine((1.0, work), (1.0, line))
-    theta = np.arange(len(cycle.motion)) * (2 * np.pi / len(cycle.motion))
+    driving = None
+    if dyn.torque is None:
+        constant = -moment.total() / span
+        half = 0.5 * np.diff(edges)
+        line = Piecewise(edges, np.column_stack([constant * (edges[:-1] + half), constant * half]))
+    else:
+        m_d = torque_at(dyn.torque, dyn.period, np.degrees(x))
+        driving = fit(edges, m_d)
+        constant = balanced(driving, moment, float(np.max(np.abs(m_d)) + np.max(np.abs(sense * red.moment))), span)
+    # ΔT: with a law, ∫(M_r + M_d) dθ at once (the works' sum, not the difference of the two large works)
+    energy = combine((1.0, work), (1.0, line)) if driving is None else \
+        combine((1.0, moment), (1.0, driving)).integral(0.0)
+    theta = np.arange(len(cycle.motion) * turns) * (2 * np.pi / len(cycle.motion))
     pos_motion, pos_travel = solve(theta, 2)
-    at = reduce(pos_motion, scene, pos_travel)
+    at = reduce(pos_motion, scene, pos_travel, theta=theta)
     omega_m = abs(w1)
     wheel, excess = _flywheel(energy, inertia, omega_m, dyn.delta, dyn.flywheel)
     x = nodes_of(edges)
@@ -187,7 +231,8 @@ def machine_dynamics(scene: Scene, cycle: Cycle) -> MachineDynamics:
     return MachineDynamics(sense=sense, start=start, omega_m=omega_m, rotor=dyn.rotor_inertia, moment=moment,
                            inertia=inertia, slope=slope, work=work, energy=energy, constant=constant, at=at,
                            theta=theta, breaks=breaks, flywheel=wheel,
-                           kinetic0=0.5 * omega_m * omega_m * wheel.inertia_exact + excess, excess=excess, rise=rise)
+                           kinetic0=0.5 * omega_m * omega_m * wheel.inertia_exact + excess, excess=excess, rise=rise,
+                           period=dyn.period, driving=driving)
 
 
 def _check_speed(scene: Scene, w1: float) -> None:

@@ -15,6 +15,7 @@ import numpy as np
 from ..kinematics import Motion
 from ..kinetostatics import Travel, applied_loads
 from ..scene import Scene
+from .laws import law_moment
 
 __all__ = ["Reduced", "reduce"]
 
@@ -29,14 +30,20 @@ class Reduced:
     slope: np.ndarray
 
 
-def reduce(motion: Motion, scene: Scene, travel: Travel | None = None) -> Reduced:
+def reduce(motion: Motion, scene: Scene, travel: Travel | None = None, theta: np.ndarray | None = None) -> Reduced:
     """The reduced moment, inertia and dI_r/dφ of ``scene``'s loads and masses on ``motion``
     (order 2, the crank at its constant ω1 ≠ 0, ε1 = 0); ``travel`` for forces that follow
-    the output. The crank's own mass counts like any link's."""
+    the output; ``theta`` the crank's turned angle (rad, from the cycle's first position) at the
+    motion's positions, for the moments with a law in it. The crank's own mass counts like any
+    link's."""
     w1 = float(motion.mechanism.drive.speed)
     loads, couples = applied_loads(motion, scene, travel, inertia=False)
     n = len(motion)
     power = np.zeros(n)
+    if any(m.law is not None for m in scene.moments):
+        if theta is None:
+            raise ValueError("a moment with a law in the crank angle needs theta, the crank's turned angle")
+        power += w1 * law_moment(motion, scene, theta)
     for load in loads:
         power += np.sum(load.force * motion.links[load.link].velocity(load.point), axis=1)
     for couple in couples:

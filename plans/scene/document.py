@@ -13,7 +13,8 @@ from ..errors import SceneError
 from .checks import SHOW, subtable, text, whole
 from .counterweights import read_counterweights
 from .drive import read_drive
-from .dynamics import read_dynamics
+from .dynamics import read_period
+from .laws import read_dynamics_with_laws
 from .gear_pair import read_gear_pair
 from .gears import read_gears, read_synthesis
 from .loads import read_balance, read_forces, read_gravity, read_masses, read_moments
@@ -125,13 +126,13 @@ def _parse(data: Mapping[str, Any], file: str | None) -> Scene:
         raise SceneError("a force with a law or a stroke follows the output link over the cycle: add [drive] "
                          "positions = N (and [plans] output, the slider or rocker it follows)",
                          key=f"forces[{follows.index}]")
-    moments = read_moments(data.get("moments", []), links)
+    moments = read_moments(data.get("moments", []), links, read_period(data.get("dynamics")))
     gravity = read_gravity(data)
     balance = read_balance(data["balance"] if "balance" in data else None, drive, links, points)
     if "motor" in data and "dynamics" not in data:
         raise SceneError("[motor] drives the machine in [dynamics]: add [dynamics] (delta or flywheel, and "
                          'driving = "motor" or simulate)', key="motor")
-    dynamics = read_dynamics(data["dynamics"], data.get("motor")) if "dynamics" in data else None
+    dynamics = read_dynamics_with_laws(data["dynamics"], data.get("motor")) if "dynamics" in data else None
     if "dynamics" in draw and dynamics is None:
         raise SceneError('draw "dynamics" shows the machine\'s motion under its loads: add [dynamics] with delta '
                          '(the allowed coefficient of speed fluctuation) or flywheel', key="plans.draw")

@@ -13,10 +13,14 @@ from typing import Any, Mapping
 from ..errors import SceneError
 from .checks import SHOW, number
 
-__all__ = ["Dynamics", "Motor", "Simulation", "read_dynamics", "DRIVINGS", "MAX_DELTA", "MIN_DELTA"]
+__all__ = ["Dynamics", "Motor", "Simulation", "read_dynamics", "read_period", "DRIVINGS", "MAX_DELTA", "MIN_DELTA",
+           "MAX_TURNS"]
 
-#: How the crank is driven over the steady cycle.
-DRIVINGS = ("constant",)
+#: How the crank is driven over the steady cycle: a constant moment, or a law in the crank angle
+#: (a torque as [turning] writes it: a table, harmonics or shapes).
+DRIVINGS = ("constant", "law")
+#: Most turns of the crank in one cycle (``period`` = 360·turns degrees; [turning]'s longest cycle).
+MAX_TURNS = 10
 #: Longest start-up simulated, s.
 MAX_T_END = 3600.0
 #: Largest coefficient of speed fluctuation δ: at δ = 2 the crank would stop (ω_min = ω_m(1 − δ/2));
@@ -60,9 +64,15 @@ class Dynamics:
     δ = (ω_max − ω_min)/ω_m (the flywheel is found for it), or ``flywheel`` a given flywheel's
     inertia J (kg·m², the δ it keeps is found); ``rotor_inertia`` (kg·m²) the motor's and gears'
     inertia reduced to the crank, always turning with it; ``driving``: "constant", the moment on
-    the crank constant over the steady cycle and equal to the mean of the loads' reduced moment;
-    ``motor`` the ``[motor]`` and ``simulate`` its start-up (needs the motor); ``true_speed``:
-    the positions' kinematics and forces at the true ω1(φ), ε1(φ) instead of the constant ω1."""
+    the crank constant over the steady cycle and equal to the mean of the loads' reduced moment,
+    or "law": ``torque`` (a :class:`~plans.scene.turning.Torque`, typed loosely here since that
+    module imports this one's bounds; read by :func:`plans.scene.laws.read_dynamics_with_laws`:
+    N·m on the crank, positive in its sense of rotation) against θ, the crank's turned angle in
+    degrees from the cycle's first position; ``period`` the cycle in crank
+    degrees (360·turns: 720 for a four-stroke engine; the linkage repeats every turn, the laws
+    over the period); ``motor`` the ``[motor]`` and ``simulate`` its start-up (needs the motor);
+    ``true_speed``: the positions' kinematics and forces at the true ω1(φ), ε1(φ) instead of the
+    constant ω1."""
 
     delta: float | None = None
     flywheel: float | None = None
@@ -71,6 +81,24 @@ class Dynamics:
     motor: Motor | None = None
     simulate: Simulation | None = None
     true_speed: bool = False
+    period: float = 360.0
+    torque: object | None = None
+
+
+def read_period(table: Any) -> float | None:
+    """``[dynamics] period`` (crank degrees of one cycle: 360·turns, 1 … :data:`MAX_TURNS` turns;
+    360 by default); None without ``[dynamics]`` (``table`` None)."""
+    if table is None:
+        return None
+    if not isinstance(table, Mapping):
+        raise SceneError("[dynamics] must be a table: delta = 0.05 (the allowed coefficient of speed fluctuation)",
+                         key="dynamics")
+    period = number(table.get("period", 360.0), "dynamics.period", bound=360.0 * MAX_TURNS, why="°")
+    turns = period / 360.0
+    if not (turns == round(turns) and 1 <= turns <= MAX_TURNS):
+        raise SceneError(f"period is the cycle in crank degrees, a whole number of turns: 360, 720 (a four-stroke "
+                         f"engine), … up to {360 * MAX_TURNS}; got {period:g}", key="dynamics.period")
+    return period
 
 
 def read_dynamics(table: Any, motor: Any = None) -> Dynamics:
@@ -79,7 +107,7 @@ def read_dynamics(table: Any, motor: Any = None) -> Dynamics:
     if not isinstance(table, Mapping):
         raise SceneError("[dynamics] must be a table: delta = 0.05 (the allowed coefficient of speed fluctuation)",
                          key="dynamics")
-    allowed = {"delta", "flywheel", "rotor_inertia", "driving", "simulate", "true_speed"}
+    allowed = {"delta", "flywheel", "rotor_inertia", "driving", "simulate", "true_speed", "period"}
     extra = sorted(str(k) for k in set(table) - allowed)
     if extra:
         raise SceneError(f"unknown key {extra[0]!r}; [dynamics] has {', '.join(sorted(allowed))}",
@@ -102,10 +130,12 @@ def read_dynamics(table: Any, motor: Any = None) -> Dynamics:
     rotor = number(table.get("rotor_inertia", 0.0), "dynamics.rotor_inertia", bound=MAX_INERTIA, why=" kg·m²")
     if rotor < 0.0:
         raise SceneError(f"rotor_inertia is 0 or more, got {rotor:g} kg·m²", key="dynamics.rotor_inertia")
+    period = read_period(table)
     driving = table.get("driving", "constant")
-    if driving not in DRIVINGS:
-        raise SceneError(f"driving is {' or '.join(repr(d) for d in DRIVINGS)} (the moment on the crank constant "
-                         f"over the steady cycle; a [motor] is run by simulate); got {SHOW.repr(driving)}", key="dynamics.driving")
+    if driving != "constant":           # a law is read by plans.scene.laws, which takes it out of the table
+        raise SceneError(f"driving is \"constant\" (the moment on the crank constant over the steady cycle; a [motor] "
+                         f"is run by simulate) or a law in the crank angle: a table [[deg, N·m], …], harmonics or "
+                         f"shapes, as [turning] writes its torque; got {SHOW.repr(driving)}", key="dynamics.driving")
     engine = read_motor(motor) if motor is not None else None
     simulate = None
     if "simulate" in table:
@@ -118,8 +148,14 @@ def read_dynamics(table: Any, motor: Any = None) -> Dynamics:
     true_speed = table.get("true_speed", False)
     if not isinstance(true_speed, bool):
         raise SceneError(f"true_speed is true or false, got {SHOW.repr(true_speed)}", key="dynamics.true_speed")
+    if period != 360.0:
+        for key, on in (("simulate", simulate is not None), ("true_speed", true_speed)):
+            if on:
+                raise SceneError(f"{key} is not done yet over a cycle of {period:g}° (it takes the positions of one "
+                                 f"turn, and the speed differs from turn to turn): remove {key} or give period = 360",
+                                 key=f"dynamics.{key}")
     return Dynamics(delta=delta, flywheel=flywheel, rotor_inertia=rotor, driving=driving, motor=engine,
-                    simulate=simulate, true_speed=true_speed)
+                    simulate=simulate, true_speed=true_speed, period=period)
 
 
 def _read_simulation(table: Any) -> Simulation:

@@ -12,6 +12,7 @@ from typing import Any, Iterator, Mapping
 
 from ..errors import SceneError
 from .checks import SHOW, entry_key, link_ref, number
+from .laws import read_law
 from .values import (FRAME, MAX_ANGLE_DEG, MAX_LOAD, AppliedForce, AppliedMoment, Balance, Drive, DriveKind,
                      Mass)
 
@@ -179,15 +180,28 @@ def _law(value: Any, key: str) -> tuple[tuple[float, float], ...]:
     return tuple(out)
 
 
-def read_moments(items: Any, links: Mapping[str, tuple[str, ...]]) -> tuple[AppliedMoment, ...]:
-    """``[[moments]]``: a couple value (N·m, CCW positive) on a moving link."""
+def read_moments(items: Any, links: Mapping[str, tuple[str, ...]],
+                 period: float | None = None) -> tuple[AppliedMoment, ...]:
+    """``[[moments]]``: a couple value (N·m, CCW positive) on a moving link, or its ``law`` in the
+    crank's turned angle (degrees from the cycle's first position, N·m CCW positive; written as
+    [turning] writes a torque) over the ``period`` of ``[dynamics]`` (None: no [dynamics])."""
     out = []
-    for i, key, item in _load_entries(items, "moments", {"link", "value"}, ("link", "value"),
-                                      "a moment has link and value (N·m, CCW positive)",
+    for i, key, item in _load_entries(items, "moments", {"link", "value", "law"}, ("link",),
+                                      "a moment has link and value (N·m, CCW positive) or law (in the crank angle)",
                                       "a moment needs link and value (N·m, CCW positive)"):
         link = _moving_link(item["link"], f"{key}.link", links, "a moment")
-        out.append(AppliedMoment(link=link, value=number(item["value"], f"{key}.value", bound=MAX_LOAD, why=" N·m"),
-                                 index=i))
+        if ("value" in item) == ("law" in item):
+            raise SceneError("a moment needs value (N·m, CCW positive) or law (its value against the crank angle), "
+                             "one of the two", key=key)
+        if "value" in item:
+            out.append(AppliedMoment(link=link, value=number(item["value"], f"{key}.value", bound=MAX_LOAD,
+                                                             why=" N·m"), index=i))
+            continue
+        if period is None:
+            raise SceneError("a moment's law in the crank angle is taken by the machine's dynamics over its cycle: add "
+                             "[dynamics] (delta or flywheel), or give value", key=f"{key}.law")
+        law = read_law(item["law"], f"{key}.law", period, "give value = … for a constant moment")
+        out.append(AppliedMoment(link=link, value=0.0, index=i, law=law))
     return tuple(out)
 
 

@@ -18,7 +18,7 @@ from .gear_pair import GearPairSpec
 from .gears import GearTrain, Synthesis
 from .counterweights import CounterweightSpec
 from .rotor import RotorSpec
-from .turning import FlywheelSpec, OperationSpec, TurningSpec
+from .turning import FlywheelSpec, OperationSpec, Torque, TurningSpec
 
 #: The frame's name in [links] (a link name, a string).
 FRAME = "0"
@@ -233,11 +233,14 @@ class AppliedForce:
 
 @dataclass(frozen=True)
 class AppliedMoment:
-    """An external couple (``[[moments]]``) on ``link``: ``value`` (N·m, CCW positive)."""
+    """An external couple (``[[moments]]``) on ``link``: ``value`` (N·m, CCW positive), or ``law``
+    its value (N·m, CCW positive) against the crank's turned angle θ (degrees from the cycle's
+    first position, over ``[dynamics] period``; ``value`` is then 0), read by [dynamics] alone."""
 
     link: str
     value: float
     index: int
+    law: Torque | None = None
 
 
 @dataclass(frozen=True)

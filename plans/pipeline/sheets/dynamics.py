@@ -45,6 +45,9 @@ def dynamics_sheets(scene: Scene, machine: MachineDynamics, forces: Forces | Non
         "reduced_inertia_slope": [float(x) for x in machine.at.slope],
         "rotor_inertia": machine.rotor,
         "constant_moment": s * machine.constant,
+        "period": machine.period, "driving": "constant" if machine.driving is None else "law",
+        "theta": [k * machine.period / len(th) for k in range(len(th))],
+        "driving_moment": [float(x) for x in s * machine.driving_moment(th)],
         "work_resisting": [float(x) for x in machine.resisting_work(th)],
         "work_driving": [float(x) for x in machine.driving_work(th)],
         "kinetic_energy_change": [float(x) for x in machine.energy(th)],
@@ -61,8 +64,8 @@ def dynamics_sheets(scene: Scene, machine: MachineDynamics, forces: Forces | Non
     else:
         w1, e1 = s * machine.omega_m, 0.0
     if forces is not None and forces.balance.kind == "moment":
-        mb = balance_from_dynamics(machine, w1, e1)
-        groups = forces.balance.value
+        groups = forces.balance.value      # one turn's positions: M_b repeats every turn (no moment's law here)
+        mb = balance_from_dynamics(machine, w1, e1)[:len(groups)]
         ref = np.maximum(np.abs(groups), 1e-300)
         data["balance_check"] = {
             "from_reduced": [float(x) for x in mb], "groups": [float(x) for x in groups],
