@@ -279,6 +279,19 @@ def test_the_count_changes_over_the_cycle_at_branch_points():
     assert "The count of real assemblies changes" in words
     for k, j in changes:
         assert f"{GROUP}: {counts[k]} → {counts[j]} assemblies between positions {k} and {j}" in words
+    # each branch marked on the crank's circle halfway between the two crank positions
+    marks = {e.get("data-branch"): e for e in root.iter(f"{SVG}line") if e.get("data-branch")}
+    assert set(marks) == {f"{k}-{j}" for k, j in changes}
+    circle = next(e for e in root.iter(f"{SVG}circle") if (e.get("id") or "").endswith("crank-circle"))
+    cx, cy, r = (float(circle.get(a)) for a in ("cx", "cy", "r"))
+    for (k, j), e in zip(changes, (marks[f"{k}-{j}"] for k, j in changes)):
+        x1, y1 = float(e.get("x1")), float(e.get("y1"))
+        assert math.hypot(x1 - cx, y1 - cy) == pytest.approx(r, abs=2e-3)          # it starts on the circle
+        tips = [next(el for el in root.iter(f"{SVG}g") if el.get("data-position") == str(i)) for i in (k, j)]
+        angles = [float(t.get("data-angle")) for t in tips]
+        step = abs(360.0 / 24)
+        mark = math.degrees(math.atan2(-(y1 - cy), x1 - cx))                       # paper y down
+        assert min(abs((mark - a + 180.0) % 360.0 - 180.0) for a in angles) == pytest.approx(step / 2, abs=0.05)
     size = sheets.motion.mechanism.size
     for p in report["positions"]:           # the drawn pose is one of them at every position
         chosen = next(q for q in p["assemblies"][GROUP]["poses"] if q["chosen"])

@@ -89,8 +89,10 @@ def _pose(canvas: Canvas, g, sch: Scheme, ident: str, w: float, style: Style, pi
 
 
 def draw_positions(sheet: PositionsSheet, heading: Heading, *, ident: str, style: Style = Style(),
-                   notes: tuple[str, ...] = ()) -> str:
-    """SVG text of the positions sheet (see the module)."""
+                   notes: tuple[str, ...] = (), branches: tuple[tuple[int, int], ...] = ()) -> str:
+    """SVG text of the positions sheet (see the module). ``branches``: pairs of neighbouring
+    positions (k, k + 1) between which a group's count of real assemblies changes; each is marked
+    on the crank's circle between the two crank positions, a bar outwards, lettered "branch"."""
     coords = [xy for s in sheet.poses + sheet.extremes for xy in s.points.values()]
     coords += [p for s in sheet.poses[:1] for gd in s.guides for p in (gd.start, gd.end)]
     coords += [p for t in sheet.traces for p in t.path]
@@ -114,6 +116,7 @@ def draw_positions(sheet: PositionsSheet, heading: Heading, *, ident: str, style
                        stroke_dasharray=style.dash, id=f"{ident}-crank-circle")
     el.attribs["data-point"] = sheet.tip
     g.add(traces)
+    _branches(canvas, dwg, traces, sheet, branches, pivot_xy, radius, ident, style)
     poses = dwg.g(id=f"{ident}-poses", stroke=style.colour)
     for i, sch in enumerate(sheet.poses):
         pg = dwg.g(id=f"{ident}-pos{i}")
@@ -175,6 +178,26 @@ def draw_positions(sheet: PositionsSheet, heading: Heading, *, ident: str, style
         note_lines(canvas, dwg.add(dwg.g(id=f"{ident}-notes")), notes, style)
     canvas.place_labels(dwg.add(dwg.g(id=f"{ident}-leaders")))
     return dwg.tostring()
+
+
+#: Length of a branch mark outwards from the crank's circle, mm.
+BRANCH_MM = 6.0
+
+
+def _branches(canvas: Canvas, dwg, parent, sheet: PositionsSheet, branches: tuple[tuple[int, int], ...],
+              pivot: np.ndarray, radius: float, ident: str, style: Style) -> None:
+    """A bar on the crank's circle halfway (the short way round) between the crank's tips at
+    positions k and j, for each branch (k, j); ``data-branch`` = "k-j"."""
+    for k, j in branches:
+        a = [math.atan2(*np.subtract(sheet.poses[i].points[sheet.tip], pivot)[::-1]) for i in (k, j)]
+        mid = a[0] + 0.5 * ((a[1] - a[0] + math.pi) % (2.0 * math.pi) - math.pi)
+        u = np.array([math.cos(mid), math.sin(mid)])
+        inner, outer = pivot + u * radius, pivot + u * (radius + BRANCH_MM)
+        el = canvas.line(parent, inner, outer, width=style.link, stroke=style.component_colour,
+                         stroke_width=fmt(style.link, 3), id=f"{ident}-branch{k}-{j}")
+        el.attribs["data-branch"] = f"{k}-{j}"
+        canvas.label(parent, outer, "branch", size=style.small_text, italic=False, prefer=tuple(u),
+                     ident=f"{ident}-branch{k}-{j}-l", digits=False, near=0.6, fill=style.component_colour)
 
 
 def _tick_labels(canvas: Canvas, parent, sheet: PositionsSheet, ident: str, style: Style) -> None:

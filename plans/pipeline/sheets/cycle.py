@@ -45,6 +45,7 @@ def cycle_sheets(scene: Scene, cycle: Cycle, scales: Scales, stem: str, style: S
         data["extremes"] = [{"angle": float(a) % 360.0, "s": float(s)}
                             for a, s in zip(cycle.extremes.values, ext.s)]
     changes: list[str] = []
+    branches: set[tuple[int, int]] = set()
     if assembled is not None:
         counts = {g: [a[g].count for a in assembled] for g in assembled[0]}
         data["assemblies"] = counts
@@ -53,6 +54,7 @@ def cycle_sheets(scene: Scene, cycle: Cycle, scales: Scales, stem: str, style: S
                 j = (k + 1) % len(n)
                 if n[k] != n[j]:
                     changes.append(f"{g}: {n[k]} → {n[j]} assemblies between positions {k} and {j}")
+                    branches.add((k, j))
     if "positions" in scene.draw:
         sheet = positions_sheet(motion, cycle.extremes, cycle.dense, output=out.link, point=out.point,
                                 kind=out.kind, extreme_s=None if ext is None else ext.s, trace=c.trace)
@@ -65,13 +67,13 @@ def cycle_sheets(scene: Scene, cycle: Cycle, scales: Scales, stem: str, style: S
                          f"(φ_{d.link} = {a0:.2f}°) and {out.point}″ (φ_{d.link} = {a1:.2f}°), drawn thick")
         if changes:
             notes.append("The count of real assemblies changes (a branch point, where two assemblies merge, lies "
-                         "between): " + "; ".join(changes))
+                         "between; marked \"branch\" on the crank's circle): " + "; ".join(changes))
         elif assembled is not None:
             notes.append("Every group keeps its count of real assemblies over the cycle: " + ", ".join(
                 f"{g} {n[0]}" for g, n in data["assemblies"].items()))
         files[f"{stem}-positions.svg"] = draw_positions(
             sheet, Heading(scene.title, "Positions of the mechanism over one revolution", position),
-            ident="positions", style=style, notes=tuple(notes))
+            ident="positions", style=style, notes=tuple(notes), branches=tuple(sorted(branches)))
     if "diagrams" in scene.draw:
         dn = cycle.dense_output
         dia = diagrams(start=cycle.start, step=cycle.step, positions=c.positions, every=cycle.every, omega=d.speed,
