@@ -372,53 +372,50 @@ def _v_detail_origin(sheet: GearSheet) -> tuple[float, float]:
 
 def _omega_detail(dwg, canvas: Canvas, sheet: GearSheet, ident: str, style: Style, labels) -> None:
     """The short ω segments again, k× longer, from a point under the pole (``data-plan="bound"``,
-    μ = μω/k): each measured, each named, the factor stated."""
+    μ = μω/k): each measured (``omega:L:detail``, not the picture's own ω_L, its ray's end), each
+    named, the factor stated."""
     short, k = _short(sheet)
-    if not short:
-        return
-    ox, oy = _detail_origin(sheet)
-    g = dwg.g(id=f"{ident}-omega-detail", stroke=style.colour, fill="none")
-    g.attribs["data-mu"] = repr(sheet.mu_omega / k)
-    g.attribs["data-plan"] = "bound"
-    g.attribs["data-vectors"] = str(len(short))
-    for j, s in enumerate(short):
-        y = oy - 4.0 * j
-        head = (ox + k * (s.head[0] - s.tail[0]), y)
-        line = vector(canvas, g, (ox, y), head, style.vector_colour, f"{ident}-dw{j}", f"{ident}-dwh{j}", style)
-        line.attribs["data-quantity"] = f"omega:{s.link}:detail"      # not the picture's own ω_L (its ray's end)
-        line.attribs["data-value"] = repr(abs(s.omega))
-        line.attribs["data-direction"] = _direction(canvas, (ox, y), head)
-        line.attribs["data-from"], line.attribs["data-to"] = f"o{j}", f"w{s.link}"
-        canvas.label(labels, head, f"ω_{{{s.link}}}", size=style.small_text, prefer=(1.0, 0.0),
-                     ident=f"{ident}-dwl{j}", near=0.8, fill=style.vector_colour)
-    canvas.text(dwg.add(dwg.g(id=f"{ident}-omega-detail-caption", fill=style.colour)),
-                canvas.paper((ox - 2.0, oy + 3.5)), f"detail ×{k:g} of the short ω segments, μ_ω = "
-                f"{sheet.mu_omega / k:.4g} (rad/s)/mm", size=style.small_text, ident=f"{ident}-dcap")
-    dwg.add(g)
+    rows = [(f"omega:{s.link}:detail", abs(s.omega), s.head[0] - s.tail[0], f"o{j}", f"w{s.link}", f"ω_{{{s.link}}}")
+            for j, s in enumerate(short)]
+    _detail(dwg, canvas, ident, style, labels, rows, k, _detail_origin(sheet), sheet.mu_omega,
+            ("omega-detail", "w", "dcap", "ω segments, μ_ω", "(rad/s)/mm"))
 
 
 def _v_detail(dwg, canvas: Canvas, sheet: GearSheet, ident: str, style: Style, labels) -> None:
     """The short pitch-point velocities again, k× longer, under the ω detail (``data-plan="bound"``,
     μ = μV/k): each measured (``vp:a-b:detail``), each named, the factor stated."""
     short, k = _short_v(sheet)
-    if not short:
+    rows = [(f"vp:{p.a}-{p.b}:detail", abs(p.v), p.head[0] - p.tail[0], f"r{j}", f"v{p.a}{p.b}", f"v_{{{p.a}{p.b}}}")
+            for j, p in enumerate(short)]
+    _detail(dwg, canvas, ident, style, labels, rows, k, _v_detail_origin(sheet), sheet.mu_v,
+            ("v-detail", "v", "dvcap", "v segments, μ_V", "(m/s)/mm"))
+
+
+def _detail(dwg, canvas: Canvas, ident: str, style: Style, labels, rows: list, k: float,
+            origin: tuple[float, float], mu: float, names: tuple[str, str, str, str, str]) -> None:
+    """Segments ``rows`` (quantity, value, drawn length mm, from, to, label) drawn again k× longer
+    from ``origin``, one under the other, in a measured group (μ = ``mu``/k), with a caption;
+    ``names``: the group's id, the letter of its elements' ids, the caption's id, its words, the unit."""
+    if not rows:
         return
-    ox, oy = _v_detail_origin(sheet)
-    g = dwg.g(id=f"{ident}-v-detail", stroke=style.colour, fill="none")
-    g.attribs["data-mu"] = repr(sheet.mu_v / k)
+    group, letter, cap, words, unit = names
+    ox, oy = origin
+    g = dwg.g(id=f"{ident}-{group}", stroke=style.colour, fill="none")
+    g.attribs["data-mu"] = repr(mu / k)
     g.attribs["data-plan"] = "bound"
-    g.attribs["data-vectors"] = str(len(short))
-    for j, p in enumerate(short):
+    g.attribs["data-vectors"] = str(len(rows))
+    for j, (quantity, value, length, frm, to, text) in enumerate(rows):
         y = oy - 4.0 * j
-        head = (ox + k * (p.head[0] - p.tail[0]), y)
-        line = vector(canvas, g, (ox, y), head, style.vector_colour, f"{ident}-dv{j}", f"{ident}-dvh{j}", style)
-        line.attribs["data-quantity"] = f"vp:{p.a}-{p.b}:detail"
-        line.attribs["data-value"] = repr(abs(p.v))
+        head = (ox + k * length, y)
+        line = vector(canvas, g, (ox, y), head, style.vector_colour, f"{ident}-d{letter}{j}",
+                      f"{ident}-d{letter}h{j}", style)
+        line.attribs["data-quantity"] = quantity
+        line.attribs["data-value"] = repr(value)
         line.attribs["data-direction"] = _direction(canvas, (ox, y), head)
-        line.attribs["data-from"], line.attribs["data-to"] = f"r{j}", f"v{p.a}{p.b}"
-        canvas.label(labels, head, f"v_{{{p.a}{p.b}}}", size=style.small_text, prefer=(1.0, 0.0),
-                     ident=f"{ident}-dvl{j}", near=0.8, fill=style.vector_colour)
-    canvas.text(dwg.add(dwg.g(id=f"{ident}-v-detail-caption", fill=style.colour)),
-                canvas.paper((ox - 2.0, oy + 3.5)), f"detail ×{k:g} of the short v segments, μ_V = "
-                f"{sheet.mu_v / k:.4g} (m/s)/mm", size=style.small_text, ident=f"{ident}-dvcap")
+        line.attribs["data-from"], line.attribs["data-to"] = frm, to
+        canvas.label(labels, head, text, size=style.small_text, prefer=(1.0, 0.0),
+                     ident=f"{ident}-d{letter}l{j}", near=0.8, fill=style.vector_colour)
+    canvas.text(dwg.add(dwg.g(id=f"{ident}-{group}-caption", fill=style.colour)),
+                canvas.paper((ox - 2.0, oy + 3.5)), f"detail ×{k:g} of the short {words} = {mu / k:.4g} {unit}",
+                size=style.small_text, ident=f"{ident}-{cap}")
     dwg.add(g)
