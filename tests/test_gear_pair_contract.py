@@ -4,13 +4,15 @@ approach and recess, the arc of contact, the angles turned and the sliding veloc
 the internal pair's interference in [gear_pair] and in gear trains; every refusal one line naming
 its key; the old report's keys and values unchanged.
 
-Published problems: the statements are quoted from the books; their printed answers are NOT
-quoted, because I could not check my memory of them against the printed pages here. Every
-expected value is instead worked in this file in closed form, the book's own way (the textbook's
-formulas for a standard pair, written out below), and compared with plans' general formulas (with
-shifts, from the line of action) to 1e-12 relative: both are exact, so only the double rounding
-separates them. Each value is also compared at the precision the book prints (0.01 mm, 0.01°),
-which is the bound a reader comparing with the book would use."""
+Published problems: R.S. Khurmi & J.K. Gupta, Theory of Machines (S. Chand), ch. 12 "Toothed
+Wheels", as the FOSSEE Scilab Textbook Companion of the book reproduces them (FOSSEE/Scilab-TBC-
+Uploads: one script per example, its given data and the book's formulas, each answer printed with
+a format: %.2f, %.3f, %d). The data here are the companion's; each printed answer is written as the
+literal the companion's format prints, and asserted within that format's rounding (%.2f: ±0.005;
+%d truncates: [n, n + 1)). Each is also worked in this file in closed form, the book's way, and
+compared with plans' general formulas (with shifts, from the line of action) to 1e-12 relative.
+Uicker, Pennock & Shigley's problem states its own contact ratio of 1.6, and the handbooks' shifted
+internal pair is checked against SDP/SI's equations."""
 
 from __future__ import annotations
 
@@ -61,6 +63,7 @@ def test_khurmi_pinion_and_rack():
     r, add, m = 62.5, 6.25, 125.0 / 20
     phi = math.asin(math.sqrt(add / r))
     assert round(math.degrees(phi), 2) == 18.43
+    assert abs(math.degrees(phi) - 18.435) <= 0.0005          # printed: "phi = 18.435 degrees" (%.3f)
     approach = add / math.sin(phi)
     recess = math.sqrt((r + add) ** 2 - (r * math.cos(phi)) ** 2) - r * math.sin(phi)
     arc = (approach + recess) / math.cos(phi)
@@ -74,6 +77,7 @@ def test_khurmi_pinion_and_rack():
         assert rep[key] == pytest.approx(value, rel=REL)
         assert round(rep[key], 2) == round(value, 2)            # the book prints 0.01 mm
     assert 1.0 < rep["contact_ratio"] < 2.0                     # one pair always, two at times
+    assert abs(rep["arc_of_contact"] - 36.68) <= 0.005          # printed: "Length of arc of contact = 36.68 mm"
     assert rep["angle_turned"][0] == pytest.approx(math.degrees(arc / r), rel=REL)
     assert rep["angle_turned"][1] is None and rep["rack_travel"] == pytest.approx(arc, rel=REL)
     w1 = 2 * math.pi * n1 / 60
@@ -168,21 +172,24 @@ def _khurmi_internal_path(r: float, big: float, tip1: float, tip2: float, phi: f
 
 
 def test_khurmi_internal_gear_with_addenda_in_mm():
-    """Khurmi & Gupta, Theory of Machines, ch. 12 "Toothed Wheels", worked example: "A pinion having
-    18 teeth engages with an internal gear having 72 teeth. If the gear teeth have involute profile
-    with 20° pressure angle, module of 4 mm and the addenda on pinion and gear are 8.6 mm and
-    3.8 mm respectively, find the length of path of contact." Worked the book's way
-    (:func:`_khurmi_internal_path`). plans computes the same path — and refuses the pair in a
-    scene: the pinion's tip of 8.6 mm is pointed (s_a < 0), and the ring's tip reaches inside N1
-    (involute interference); the book does not look."""
+    """Khurmi & Gupta, Theory of Machines, ch. 12 "Toothed Wheels", worked example (the companion's
+    data): "A pinion having 18 teeth engages with an internal gear having 72 teeth. If the gear teeth
+    have involute profile with 20° pressure angle, module of 4 mm and the addenda on pinion and gear
+    are 8.5 mm and 3.5 mm respectively, find the length of path of contact." Printed: "KL = 28.04 mm"
+    (%.2f). Unequal addenda given per wheel (2.125·m and 0.875·m, their sum 3m: no shift gives
+    them). Worked the book's way (:func:`_khurmi_internal_path`). plans computes the same path — and
+    refuses the pair in a scene: the pinion's tip of 8.5 mm on a 4 mm module is pointed (s_a < 0),
+    which the book does not look at."""
     phi, m = math.radians(20.0), 4.0
-    path = _khurmi_internal_path(36.0, 144.0, 36.0 + 8.6, 144.0 - 3.8, phi)
-    p = internal_pair(18, 72, m, addenda=(8.6 / m, 3.8 / m))
-    assert p.active == pytest.approx(path, rel=REL) and round(p.active, 2) == round(path, 2)
+    path = _khurmi_internal_path(36.0, 144.0, 36.0 + 8.5, 144.0 - 3.5, phi)
+    p = internal_pair(18, 72, m, addenda=(8.5 / m, 3.5 / m))
+    assert p.active == pytest.approx(path, rel=REL) and abs(p.active - 28.04) <= 0.005
     assert p.approach + p.recess == pytest.approx(path, rel=REL)
+    assert p.approach == pytest.approx(144.0 * math.sin(phi) - math.sqrt(140.5 ** 2 - (144.0 * math.cos(phi)) ** 2),
+                                       rel=REL)                       # the companion's KP
     assert p.a_w == pytest.approx(m * (72 - 18) / 2, rel=REL)
-    assert p.sa[0] < 0.0 and involute_interference(p) < 0.0
-    e = _refusal({"z1": 18, "z2": 72, "module": m, "internal": True, "addendum": [8.6 / m, 3.8 / m]})
+    assert p.sa[0] < 0.0
+    e = _refusal({"z1": 18, "z2": 72, "module": m, "internal": True, "addendum": [8.5 / m, 3.5 / m]})
     assert str(e).startswith("[gear_pair.addendum]: the tip of wheel 1") and "pointed" in str(e)
 
 
@@ -333,6 +340,10 @@ def test_khurmi_sliding_velocities_of_an_external_pair():
     angle = math.degrees((approach + recess) / math.cos(phi) / r)
     assert rep["angle_turned"][0] == pytest.approx(angle, rel=REL)
     assert round(rep["angle_turned"][0], 2) == round(angle, 2)
+    # printed (the companion's %d of mm/s truncates, %.2f rounds): "vSK = 3972 mm/s", "vsL = 3609 mm/s",
+    # "Angle through which the pinion turns = 29.43 degrees"
+    assert 3972 <= 1000 * v["engagement"] < 3973 and 3609 <= 1000 * v["disengagement"] < 3610
+    assert abs(rep["angle_turned"][0] - 29.43) <= 0.005
     assert rep["n1"] == 2000.0 and rep["kind"] == "external" and "rack_travel" not in rep
     # without n1, no sliding velocity
     rep, _, _ = _report({"z1": 20, "z2": 40, "module": 5.0}, draw=[])
