@@ -252,3 +252,20 @@ def test_not_asked_not_computed():
 #: class3_six_link's layout; the crank OA at 45°).
 SIX = {"O": [0.0, 0.0], "A": [0.03535533905932738, 0.035355339059327376], "B": [0.087, 0.34],
        "F": [0.226, -0.135], "C": [-0.052, -0.132], "D": [-0.39, -0.297], "M": [-0.216, -0.186]}
+
+
+def test_a_mechanism_without_assur_groups_refuses_assemblies_in_one_line():
+    """The four-bar driven from its coupler (I(0-1-2-3), no group after the drive): draw
+    "assemblies" is refused naming plans.draw, not a traceback from an empty sheet."""
+    import tomllib
+
+    from plans import render
+    from plans.errors import SceneError
+    from plans.scene import parse_scene
+
+    root = Path(__file__).resolve().parent.parent
+    data = tomllib.loads((root / "examples" / "four_bar_coupler_drive.toml").read_text(encoding="utf-8"))
+    data["plans"]["draw"] = ["scheme", "assemblies"]
+    with pytest.raises(SceneError) as info:
+        render(parse_scene(data), stem="x")
+    assert info.value.key == "plans.draw" and "I(0-1-2-3)" in str(info.value) and "\n" not in str(info.value)

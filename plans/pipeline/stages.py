@@ -146,6 +146,10 @@ def assembly_analysis(scene: Scene, motion: Motion) -> list[dict[str, GroupAssem
     the JSON report and the ``-assemblies`` sheets (:mod:`.sheets.assemblies`)."""
     if "assemblies" not in scene.draw:
         return None
+    if not motion.structure.groups:
+        raise SceneError(f"draw \"assemblies\" lists the assemblies of each Assur group, and this mechanism has none "
+                         f"(the drive closes the chain itself: {motion.structure.formula}); remove \"assemblies\" "
+                         "from draw", key="plans.draw")
     _ran("assemblies")
     return [assemblies(motion, i) for i in range(len(motion))]
 
