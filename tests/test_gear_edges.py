@@ -16,6 +16,7 @@ import pytest
 
 from conftest import plans_cli, refused_line
 from plans import render
+from plans.errors import SceneError
 from plans.scene import parse_scene
 
 GEARS = Path(__file__).resolve().parent.parent / "plans" / "examples" / "gears"
@@ -164,6 +165,30 @@ def test_the_default_tip_radius_follows_the_pressure_angle():
     assert rep["tip_radius"] == pytest.approx(full * 2.0, rel=1e-15)
     rep = _pair({"z1": 40, "z2": 80, "module": 2.0, "pressure_angle": 14.5, "tip_radius": 0.3335})["gear_pair"]
     assert rep["tip_radius"] == pytest.approx(0.3335 * 2.0, rel=1e-15)  # the bound written to 4 digits is taken
+
+
+def test_a_long_addendum_rounds_the_cutters_tip_within_its_width(tmp_path):
+    """The cutter of addendum 1.355 (Uicker's pinion) has a tip (π/4 − (ha* + c*)·tan α)·m = 0.201·m
+    wide each side: the standard rounding 0.38·m would make its two roundings cross (the cut
+    failed in GEOS). The default rounding is then the full round tip, ρ* = 0.2008·cos α/(1 − sin α),
+    the sheets are drawn and pass plans check, and a larger ρ* written is refused naming the bound."""
+    from plans.checking import inspect_svg
+    from plans.scene.gear_pair import largest_tip_radius
+    alpha = math.radians(20.0)
+    full = (math.pi / 4 - (1.355 + 0.25) * math.tan(alpha)) * math.cos(alpha) / (1 - math.sin(alpha))
+    assert largest_tip_radius(20.0, 0.25, 1.355) == pytest.approx(full, rel=1e-15)
+    assert largest_tip_radius(20.0, 0.25) == pytest.approx(0.25 / (1 - math.sin(alpha)), rel=1e-15)
+    table = {"z1": 12, "z2": 60, "module": 12.7, "addendum": [1.355, 0.762]}
+    out = render(parse_scene({"gear_pair": table}), stem="long")
+    assert json.loads(out.files["long.json"])["gear_pair"]["tip_radius"] == pytest.approx(full * 12.7, rel=1e-12)
+    out.save(tmp_path)
+    for sheet in ("long-meshing.svg", "long-cutting.svg"):
+        r = inspect_svg(tmp_path / sheet)
+        assert r.ok and r.measurements, r.problems
+    with pytest.raises(SceneError) as info:
+        render(parse_scene({"gear_pair": dict(table, tip_radius=0.3)}), stem="long")
+    e = info.value
+    assert str(e).startswith(f"[gear_pair.tip_radius]: tip_radius ρ* (in modules) is 0 … {full:.4g}") and "\n" not in str(e)
 
 
 def test_a_written_tip_radius_that_does_not_fit_is_refused_at_its_key(tmp_path):

@@ -125,28 +125,6 @@ def test_uicker_long_and_short_addenda():
     assert any("thin" in w for w in warnings) and any("undercut" in w for w in warnings)
 
 
-def test_a_long_addendum_rounds_the_cutters_tip_within_its_width(tmp_path):
-    """The cutter of addendum 1.355 (Uicker's pinion) has a tip (π/4 − (ha* + c*)·tan α)·m = 0.201·m
-    wide each side: the standard rounding 0.38·m would make its two roundings cross (the cut
-    failed in GEOS). The default rounding is then the full round tip, ρ* = 0.2008·cos α/(1 − sin α),
-    the sheets are drawn and pass plans check, and a larger ρ* written is refused naming the bound."""
-    from plans.checking import inspect_svg
-    from plans.scene.gear_pair import largest_tip_radius
-    alpha = math.radians(20.0)
-    full = (math.pi / 4 - (1.355 + 0.25) * math.tan(alpha)) * math.cos(alpha) / (1 - math.sin(alpha))
-    assert largest_tip_radius(20.0, 0.25, 1.355) == pytest.approx(full, rel=1e-15)
-    assert largest_tip_radius(20.0, 0.25) == pytest.approx(0.25 / (1 - math.sin(alpha)), rel=1e-15)
-    table = {"z1": 12, "z2": 60, "module": 12.7, "addendum": [1.355, 0.762]}
-    out = render(parse_scene({"gear_pair": table}), stem="long")
-    assert json.loads(out.files["long.json"])["gear_pair"]["tip_radius"] == pytest.approx(full * 12.7, rel=1e-12)
-    out.save(tmp_path)
-    for sheet in ("long-meshing.svg", "long-cutting.svg"):
-        r = inspect_svg(tmp_path / sheet)
-        assert r.ok and r.measurements, r.problems
-    e = _refusal(dict(table, tip_radius=0.3))
-    assert str(e).startswith(f"[gear_pair.tip_radius]: tip_radius ρ* (in modules) is 0 … {full:.4g}") and "\n" not in str(e)
-
-
 def test_unequal_addenda_whose_sum_is_not_two_are_drawn():
     """ha = [1.0, 0.8] (sum 1.8): the tips d + 2·ha_i·m, the roots cut by one rack of the larger
     addendum (d − 2(1 + 0.25)m), the paths from each tip, and both sheets drawn."""
