@@ -172,11 +172,10 @@ def _detail(a: PairAnalysis, k: float) -> PairSheet:
         c = math.cos(p.alpha)
         sheet.curves.append(("arc-of-action2", "arc", np.array([[-p.approach / c * k, 0.0], [p.recess / c * k, 0.0]])))
     else:
-        mid, sense = (math.pi, 1.0) if p.kind == "external" else (0.0, 1.0)
-        sheet.curves.append(("arc-of-action2", "arc", arc(o2, rw[1] * k, mid - sense * (p.recess if mid else
-                                                                                           p.approach) / rb[1],
-                                                           mid + sense * (p.approach if mid else p.recess) / rb[1],
-                                                           60)))
+        # an external wheel 2 has P at its bottom (π), B1 left of it; a ring has P at its top, as the pinion
+        a0, a1 = (math.pi - p.recess / rb[1], math.pi + p.approach / rb[1]) if p.kind == "external" else \
+            (-p.approach / rb[1], p.recess / rb[1])
+        sheet.curves.append(("arc-of-action2", "arc", arc(o2, rw[1] * k, a0, a1, 60)))
     radius = 0.6 * float(np.hypot(*n1))
     sheet.curves.append(("alpha-w", "thin", np.array([[-radius * math.cos(t), -radius * math.sin(t)]
                                                        for t in np.linspace(0.0, p.alpha_w, 30)])))
