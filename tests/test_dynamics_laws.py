@@ -298,9 +298,6 @@ BAD = {
                     "add [dynamics]"),
     "forces": (TWO_TURNS.replace('draw = ["scheme"]', 'draw = ["scheme", "forces"]'), "moments[0].law",
                "take constant moments"),
-    "sheet law": (ROTOR.replace('draw = ["scheme"]', 'draw = ["dynamics"]'), "plans.draw", "not yet a driving law"),
-    "sheet turns": (TWO_TURNS.replace('draw = ["scheme"]', 'draw = ["dynamics"]'), "plans.draw",
-                    "not yet a cycle of 720°"),
     "true speed": (TWO_TURNS.replace("period = 720", "period = 720\ntrue_speed = true"), "dynamics.true_speed",
                    "not done yet over a cycle of 720°"),
     "simulate": (TWO_TURNS.replace("period = 720", "period = 720\nsimulate = { t_end = 1.0 }")

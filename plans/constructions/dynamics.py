@@ -10,6 +10,11 @@
   the loads' work. Exact curves (solid) beside the chords (dashed).
 - ΔT(φ) = A_d − A_r (J), exactly and as the difference of the graphical works.
 - I_r(φ): the reduced moment of inertia with the rotor's (kg·m²).
+- With a driving law (``[dynamics] driving`` in the crank angle), M_d(φ) is M_r's second curve
+  and both works are integrated by chords: A_d = ∫M_d dφ (the graph's curve, tagged) and
+  A_r = −∫M_r dφ (its second curve, tagged too: :class:`Second`).
+- A cycle of several turns (``[dynamics] period``): every graph runs over the whole period; I_r
+  repeats every turn, and its turned diagram is drawn over one turn.
 - Wittenbauer: ΔT against I_r, built by projection as the textbook builds it: ΔT(φ) and
   Wittenbauer's diagram share μT and their ΔT = 0 level, so each position's ΔT is carried across
   by a horizontal line; I_r(φ) is drawn turned through 90° under Wittenbauer's diagram at its
@@ -25,7 +30,7 @@ Every graph's ordinates at the positions are measured segments (length × μ = v
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -33,10 +38,10 @@ from ..dynamics import MachineDynamics, Startup
 from .diagrams import Graph, make_graph, nice_step, ticks_for
 from .scales import fitting_scale
 
-__all__ = ["DynamicsDiagrams", "Wittenbauer", "Tangent", "dynamics_diagrams", "StartupDiagrams", "startup_diagrams", "PHI_MM", "GRAPH_MM", "GAP_MM",
+__all__ = ["DynamicsDiagrams", "Wittenbauer", "Tangent", "Second", "dynamics_diagrams", "StartupDiagrams", "startup_diagrams", "PHI_MM", "GRAPH_MM", "GAP_MM",
            "WITTENBAUER_MM"]
 
-#: Largest length of the φ axis (one revolution), mm.
+#: Largest length of the φ axis (the cycle: one revolution, or the period's turns), mm.
 PHI_MM = 190.0
 #: Largest height of one graph, and the space between two, mm (ΔT(φ), which Wittenbauer's
 #: diagram shares, is taller: :data:`ENERGY_MM`).
@@ -91,12 +96,29 @@ class Wittenbauer:
 
 
 @dataclass(frozen=True)
+class Second:
+    """A graph's second curve measured at the positions (with a driving law): the graph's
+    ``quantity`` ("M" or "A"), the tags' ``name`` ("Md": M_d; "Ar": A_r), ``at_positions``
+    (x mm, y mm, exact value) at the N + 1 positions, and for a work its ``chords`` (x mm,
+    y mm, value) by graphical integration and their ``error`` (as :attr:`~.diagrams.Graph.error`)."""
+
+    quantity: str
+    name: str
+    at_positions: tuple[tuple[float, float, float], ...]
+    chords: tuple[tuple[float, float, float], ...] = ()
+    error: float = 0.0
+
+
+@dataclass(frozen=True)
 class DynamicsDiagrams:
     """The sheet's graphs: ``mu_phi`` (rad/mm), ``length`` (mm, one revolution), ``positions``
     N, ``pole`` H (mm) of the graphical integration, ``loads_drive`` (True when the loads' work
     is A_d, as in an engine), the four ``graphs`` (M, A, T, I), ``works`` the names of the A
-    graph's two curves (the loads' work, integrated by chords, and the constant moment's line)
-    and ``wittenbauer``."""
+    graph's two curves (the loads' work, integrated by chords, and the constant moment's line;
+    with a driving law A_d and A_r, both by chords) and ``wittenbauer``; ``mu_phi_turned`` the
+    turned I_r(φ)'s φ scale (rad/mm, one turn); ``turns`` the cycle's turns (its φ axis spans
+    them), ``per_turn`` the positions a turn, and ``seconds`` the second curves measured with a
+    driving law (M_d, A_r)."""
 
     mu_phi: float
     length: float
@@ -107,44 +129,62 @@ class DynamicsDiagrams:
     works: tuple[str, str]
     wittenbauer: Wittenbauer
     mu_phi_turned: float = 0.0
+    turns: int = 1
+    per_turn: int = 0
+    seconds: tuple[Second, ...] = ()
 
 
 def dynamics_diagrams(machine: MachineDynamics) -> DynamicsDiagrams:
     """The sheet's geometry for a solved steady cycle (see the module)."""
     n = len(machine.theta)
+    turns = round(machine.period / 360.0)
     two_pi = 2.0 * math.pi
-    mu_phi = fitting_scale(two_pi, PHI_MM)
-    length = two_pi / mu_phi
-    pos = np.append(machine.theta, two_pi)
+    span = two_pi * turns                            # the cycle, rad
+    mu_phi = fitting_scale(span, PHI_MM)
+    length = span / mu_phi
+    pos = np.append(machine.theta, span)
     mids = 0.5 * (pos[:-1] + pos[1:])
     eps = 1e-9
     kinks = np.concatenate([machine.breaks - eps, machine.breaks + eps]) if len(machine.breaks) else np.array([])
-    theta = np.unique(np.concatenate([np.linspace(0.0, two_pi, SAMPLES + 1), pos, np.clip(kinks, 0.0, two_pi)]))
+    theta = np.unique(np.concatenate([np.linspace(0.0, span, SAMPLES * turns + 1), pos, np.clip(kinks, 0.0, span)]))
     at = np.searchsorted(theta, pos)
     x = theta / mu_phi
     moment, inertia, energy = machine.moment(theta), machine.inertia(theta), machine.energy(theta)
     loads = machine.work(theta)                       # ∫M_r dφ
-    line = machine.constant * theta                   # the constant moment's work
     # graphical integration by chords: the middle ordinate of each interval times Δφ
     steps = machine.moment(mids) * np.diff(pos)
     loads_g = np.concatenate([[0.0], np.cumsum(steps)])
-    line_g = -loads_g[-1] * pos / two_pi            # the straight line to the chords' end
-    loads_drive = machine.constant < 0.0
-    if loads_drive:           # an engine: the loads drive, the constant moment is the consumer
-        work, work_g, other, sym = loads, loads_g, -line, ("A_d", "A_r")
-        t_g = loads_g + line_g
+    other_g = None
+    if machine.driving is not None:   # a driving law: both works by chords, A_d the graph's curve
+        drive = machine.driving_moment(theta)
+        work, other, sym = machine.driving_work(theta), -loads, ("A_d", "A_r")
+        work_g = np.concatenate([[0.0], np.cumsum(machine.driving_moment(mids) * np.diff(pos))])
+        other_g = -loads_g
+        t_g, loads_drive, extra_m, extra_sym = work_g + loads_g, False, drive, "M_d"
     else:
-        work, work_g, other, sym = -loads, -loads_g, line, ("A_r", "A_d")
-        t_g = line_g + loads_g
-    # M_r with the constant moment's line (M_d driving a working machine, the consumer's in an engine)
-    m = _graph("M", "M_r", "N·m", top=0.0, x=x, values=moment, at=at, height=GRAPH_MM,
-               extra=np.full_like(moment, machine.constant), extra_symbol="M_c" if machine.constant < 0.0 else "M_d")
+        line = machine.constant * theta                   # the constant moment's work
+        line_g = -loads_g[-1] * pos / span              # the straight line to the chords' end
+        loads_drive = machine.constant < 0.0
+        if loads_drive:           # an engine: the loads drive, the constant moment is the consumer
+            work, work_g, other, sym = loads, loads_g, -line, ("A_d", "A_r")
+            t_g = loads_g + line_g
+        else:
+            work, work_g, other, sym = -loads, -loads_g, line, ("A_r", "A_d")
+            t_g = line_g + loads_g
+        extra_m, extra_sym = np.full_like(moment, machine.constant), "M_c" if machine.constant < 0.0 else "M_d"
+    # M_r with M_d: the constant moment's line (driving a working machine, the consumer's in an engine) or the law
+    m = _graph("M", "M_r" if machine.driving is None else "M_r, M_d", "N·m", top=0.0, x=x, values=moment, at=at, height=GRAPH_MM, extra=extra_m,
+               extra_symbol=extra_sym)
     top = m.origin[1] + m.low - GAP_MM
-    lo_ = min(0.0, float(np.min(work)), float(np.min(work_g)), float(np.min(other)))
-    hi_ = max(0.0, float(np.max(work)), float(np.max(work_g)), float(np.max(other)))
+    series = [work, work_g, other] + ([other_g] if other_g is not None else [])
+    lo_ = min([0.0] + [float(np.min(v)) for v in series])
+    hi_ = max([0.0] + [float(np.max(v)) for v in series])
     pole = fitting_scale(max(hi_ - lo_, 1e-300) / GRAPH_MM / (m.mu * mu_phi), 1.0)     # the series' next H
     a = _graph("A", "A", "J", top=top, x=x, values=work, at=at, graphical=(at, work_g), extra=other,
                extra_symbol=sym[1], mu=m.mu * mu_phi * pole)
+    seconds: tuple[Second, ...] = ()
+    if other_g is not None:
+        a, seconds = _seconds(m, a, x[at], extra_m[at], other[at], other_g)
     top = a.origin[1] + a.low - GAP_MM
     t = _graph("T", "ΔT", "J", top=top, x=x, values=energy, at=at, graphical=(at, t_g), height=ENERGY_MM)
     witt = _wittenbauer(machine, inertia, energy, at[:-1], mu_t=t.mu)
@@ -153,7 +193,24 @@ def dynamics_diagrams(machine: MachineDynamics) -> DynamicsDiagrams:
     i = _graph("I", "I_r", "kg·m²", top=top, x=x, values=inertia, at=at, mu=witt.mu_i)
     return DynamicsDiagrams(mu_phi=mu_phi, length=length, positions=n, pole=pole, loads_drive=loads_drive,
                             graphs=(m, a, t, i), works=sym, wittenbauer=witt,
-                            mu_phi_turned=fitting_scale(two_pi, TURNED_MM))
+                            mu_phi_turned=fitting_scale(two_pi, TURNED_MM), turns=turns, per_turn=n // turns,
+                            seconds=seconds)
+
+
+def _seconds(m: Graph, a: Graph, x: np.ndarray, drive: np.ndarray, other: np.ndarray,
+             chords: np.ndarray) -> tuple[Graph, tuple[Second, ...]]:
+    """With a driving law: M_d on the M graph and A_r (exact at the positions ``x`` mm, and by
+    ``chords``) on the A graph, measured like the graphs' own curves; the A graph's drawn range
+    widened to hold A_r's chords."""
+    def pts(g: Graph, values: np.ndarray) -> tuple[tuple[float, float, float], ...]:
+        return tuple((float(px), float(g.origin[1] + v / g.mu), float(v)) for px, v in zip(x, values))
+
+    drawn = pts(a, chords)
+    low = min([a.low] + [y - a.origin[1] for _, y, _ in drawn])
+    high = max([a.high] + [y - a.origin[1] for _, y, _ in drawn])
+    error = float(np.max(np.abs(chords - other)) / max(float(np.max(np.abs(other))), 1e-300))
+    return replace(a, low=low, high=high), (Second("M", "Md", pts(m, drive)),
+                                            Second("A", "Ar", pts(a, other), drawn, error))
 
 
 def _graph(quantity: str, symbol: str, unit: str, *, top: float, x: np.ndarray, values: np.ndarray,

@@ -4,7 +4,11 @@ their right, built by projection: its ΔT = 0 level is ΔT(φ)'s and its μT the
 position's ΔT is carried across by a thin dashed line; under it I_r(φ) turned through 90° (I
 along x at Wittenbauer's μI from the same I0 — its axis is Wittenbauer's I scale — φ downwards),
 each position's I_r carried up by a thin dashed line; with its two tangents and the segment kl
-they cut on the ΔT axis. The turned I_r(φ) is a ``<g data-diagram="I" data-turned="90">`` whose
+they cut on the ΔT axis. With a driving law, M_d(φ) is drawn on M_r's graph and A_r's chords
+beside A_d's, each second curve's ordinates measured too (``Md@k``, ``Ar@k``); over a cycle of
+several turns every graph spans the period, a φ scale in degrees runs under ΔT(φ), and the
+turned I_r(φ), which repeats every turn, is drawn over one turn (its rows numbered with every
+position they hold: "1, 13"). The turned I_r(φ) is a ``<g data-diagram="I" data-turned="90">`` whose
 ordinates (from its φ axis to the curve, horizontal) are measured like the other graphs'.
 
 Wittenbauer's ``<g>`` states ``data-mu-i`` (kg·m²/mm), ``data-mu-t`` (J/mm), ``data-i0`` and
@@ -18,9 +22,9 @@ from __future__ import annotations
 import math
 
 from ..constructions.diagrams import Graph
-from ..constructions.dynamics import DynamicsDiagrams, StartupDiagrams, Wittenbauer
+from ..constructions.dynamics import DynamicsDiagrams, Second, StartupDiagrams, Wittenbauer
 from .canvas import Canvas, fmt
-from .diagrams import LEFT_MM, RIGHT_MM, draw_graph, time_axis
+from .diagrams import LEFT_MM, RIGHT_MM, _dots, draw_graph, time_axis
 from .marks import arrow
 from .positions import width_of
 from .sheet import FORMATS, TitleBlock, new_sheet, note_lines
@@ -34,8 +38,18 @@ __all__ = ["draw_dynamics", "draw_startup"]
 BETWEEN_MM = 34.0
 #: Room below the lowest drawing for the position numbers and the I_r scale, mm.
 BELOW_MM = 14.0
+#: When the content is taller than A3's drawing area less TOP_SLACK_MM (the top graph's name
+#: stands that far above the content's box, which is centred), the room below shrinks down to
+#: MIN_BELOW_MM, mm.
+TOP_SLACK_MM = 2.0
+MIN_BELOW_MM = 4.0
+#: Least distance between two numbered rows of the turned I_r(φ), mm (closer, every other row
+#: is numbered, and so on).
+ROW_MM = 3.0
 #: Room for the notes: this much per line, mm.
 NOTE_LINE_MM = 4.0
+#: The φ scale in degrees under ΔT(φ) (a law or several turns): its depth below the graph, mm.
+DEGREES_MM = 9.0
 
 
 def draw_dynamics(d: DynamicsDiagrams, heading: Heading, *, ident: str, style: Style = Style(),
@@ -48,16 +62,26 @@ def draw_dynamics(d: DynamicsDiagrams, heading: Heading, *, ident: str, style: S
     wy = t.origin[1]                                 # its ΔT = 0 level: ΔT(φ)'s, projected across
     ys = wy + w.low - 9.0                            # its I scale: the turned I_r(φ)'s I axis
     phi_end = 2.0 * math.pi / d.mu_phi_turned
-    bottom = min(t.origin[1] + t.low, ys - phi_end - 8.0) - BELOW_MM - NOTE_LINE_MM * note_rows
+    extended = d.turns > 1 or bool(d.seconds)          # a law or several turns: the φ scale in degrees
+    low_left = t.origin[1] + t.low - (DEGREES_MM if extended else 0.0)
+    lowest = min(low_left, ys - phi_end - 8.0)
     top = max(m.origin[1] + m.high, wy + w.high) + 10.0
+    area = FORMATS[2].area
+    over = top - lowest + BELOW_MM + NOTE_LINE_MM * note_rows - (area.y1 - area.y0 - TOP_SLACK_MM)
+    bottom = lowest - (BELOW_MM if over <= 0.0 else max(MIN_BELOW_MM, BELOW_MM - over)) - NOTE_LINE_MM * note_rows
     box = (-LEFT_MM, bottom, wx + w.width + RIGHT_MM, top)
     dwg, canvas = new_sheet(FORMATS[2], box, ident=ident, style=style,
                             block=TitleBlock(heading.mechanism, heading.sheet, heading.position, scales))
     for g in (m, a, t):
         draw_graph(dwg, canvas, g, f"{ident}-{g.quantity}", style, mu_x=d.mu_phi, length=d.length, abscissa="φ")
         if g.extra:           # the works; M_r and the constant moment
-            names = d.works if g.quantity == "A" else (g.symbol, g.extra_symbol)
+            names = d.works if g.quantity == "A" else ("M_r", g.extra_symbol)     # the axis may name both
             _name_curves(dwg, canvas, g, names, f"{ident}-{g.quantity}", style)
+    for sec in d.seconds:
+        _second(dwg, canvas, next(g for g in d.graphs if g.quantity == sec.quantity), sec,
+                f"{ident}-{sec.quantity}-{sec.name}", style, d.mu_phi)
+    if extended:
+        _degrees(dwg, canvas, d, t, f"{ident}-degrees", style)
     _wittenbauer(dwg, canvas, w, (wx, wy), f"{ident}-wittenbauer", style)
     _turned_inertia(dwg, canvas, d, (wx, ys), f"{ident}-I", style)
     _projections(dwg, canvas, d, (wx, wy), (wx, ys), f"{ident}-projection", style)
@@ -170,6 +194,7 @@ def _turned_inertia(dwg, canvas: Canvas, d: DynamicsDiagrams, at: tuple[float, f
     φ = 0), I along x at Wittenbauer's μI; each position's ordinate (horizontal, φ axis → curve)
     measured, its number beside the φ axis."""
     g, w = d.graphs[3], d.wittenbauer
+    rows = _turn(d, g.at_positions)
     ox, oy = at
     mu, mu_phi = w.mu_i, d.mu_phi_turned
     thin, vec = fmt(style.thin, 3), fmt(style.vector, 3)
@@ -188,15 +213,20 @@ def _turned_inertia(dwg, canvas: Canvas, d: DynamicsDiagrams, at: tuple[float, f
     ords = dwg.g(id=f"{ident}-ordinates", stroke=style.construction_colour, stroke_width=thin)
     ords.attribs["data-mu"] = repr(mu)
     ords.attribs["data-plan"] = "bound"
-    ords.attribs["data-vectors"] = str(len(g.at_positions))
+    ords.attribs["data-vectors"] = str(len(rows))
     name = "I" if w.i0 == 0.0 else "I-I0"
-    for k, (x, _, value) in enumerate(g.at_positions):
+    gap = 2.0 * math.pi / (len(rows) - 1) / mu_phi             # mm between two rows
+    every = max(1, math.ceil(ROW_MM / gap))                      # rows numbered: every one, or every 2nd, …
+    for k, (x, _, value) in enumerate(rows):
         phi = x * d.mu_phi
         a, b = p(w.i0, phi), p(value, phi)
         el = canvas.line(ords, a, b, width=style.thin, ink=abs(b[0] - a[0]) > 0.3, id=f"{ident}-ord{k}")
         _tag(el, canvas, f"{name}@{k}", abs(value - w.i0), a, b if b != a else (a[0] + 1.0, a[1]), f"phi{k}",
              f"{g.quantity}{k}")
-        canvas.text(texts, canvas.paper((ox - 2.0 - width_of(str(k), style.small_text), a[1] - 0.9)), str(k),
+        if k % every and k != len(rows) - 1:
+            continue
+        number = _row_name(d, k)
+        canvas.text(texts, canvas.paper((ox - 2.0 - width_of(number, style.small_text), a[1] - 0.9)), number,
                     size=style.small_text, ident=f"{ident}-pn{k}")
     grp.add(ords)
     end = (ox, oy - 2.0 * math.pi / mu_phi - 6.0)
@@ -204,11 +234,12 @@ def _turned_inertia(dwg, canvas: Canvas, d: DynamicsDiagrams, at: tuple[float, f
     arrow(canvas, grp, (ox, oy), end, style.colour, f"{ident}-phihead", style, of=f"{ident}-phiaxis")
     canvas.text(texts, canvas.paper((ox + 1.5, end[1] + 1.0)), "φ", size=style.text, italic=True,
                 ident=f"{ident}-phiname")
-    curve = canvas.polyline(grp, [p(w.i0 + (y - g.origin[1]) * mu, (x - g.origin[0]) * d.mu_phi) for x, y in g.exact],
+    exact = g.exact if d.turns == 1 else [(x, y) for x, y in g.exact if x <= rows[-1][0] + 1e-9]
+    curve = canvas.polyline(grp, [p((y - g.origin[1]) * mu, (x - g.origin[0]) * d.mu_phi) for x, y in exact],
                             width=style.vector, stroke_width=vec, id=f"{ident}-exact", stroke=style.vector_colour)
     curve.attribs["data-kind"] = "exact"
     dots = dwg.g(id=f"{ident}-dots", fill=style.vector_colour, stroke="none")
-    for k, (x, _, value) in enumerate(g.at_positions):
+    for k, (x, _, value) in enumerate(rows):
         el = canvas.circle(dots, p(value, x * d.mu_phi), 0.55, filled=True, id=f"{ident}-e{k}")
         el.attribs["data-kind"] = "exact"
         el.attribs["data-value"] = repr(value)
@@ -228,7 +259,9 @@ def _projections(dwg, canvas: Canvas, d: DynamicsDiagrams, witt: tuple[float, fl
     # each line broken where the axes' numbers are: past the φ axis's end and before Wittenbauer's
     # ΔT numbers; between the I scale's numbers and its line
     stop, resume = d.length + 7.0, witt[0] - 1.5
-    for k, ((x, y, _), (xi, _, inertia)) in enumerate(zip(t.at_positions[:-1], d.graphs[3].at_positions[:-1])):
+    rows = _turn(d, d.graphs[3].at_positions)
+    for k, (x, y, _) in enumerate(t.at_positions[:-1]):
+        xi, _, inertia = rows[k % (len(rows) - 1)]      # I_r repeats every turn: the turned diagram's row
         wxk, wyk, _, _ = w.at_positions[k]
         point = (witt[0] + wxk, witt[1] + wyk)
         if stop > x:
@@ -238,6 +271,74 @@ def _projections(dwg, canvas: Canvas, d: DynamicsDiagrams, witt: tuple[float, fl
         if below[1] < turned[1]:
             canvas.line(g, below, (below[0], turned[1]), width=style.thin, id=f"{ident}-i{k}")
         canvas.line(g, (below[0], turned[1] + 5.5), point, width=style.thin, id=f"{ident}-i{k}b")
+
+
+def _turn(d: DynamicsDiagrams, at_positions: tuple) -> tuple:
+    """The positions of the turned I_r(φ): all N + 1 over one turn; over several turns, the
+    first turn's (I_r repeats every turn)."""
+    return at_positions if d.turns == 1 else at_positions[:d.per_turn + 1]
+
+
+def _row_name(d: DynamicsDiagrams, k: int) -> str:
+    """The number of the turned I_r(φ)'s row ``k``: ``k``; over several turns every position it
+    holds, k, k + N, … (row 0 holds position 0 alone: N, 2N, … are row N's)."""
+    if d.turns == 1:
+        return str(k)
+    held = [k] if k == 0 else list(range(k, d.positions + 1, d.per_turn))
+    return ", ".join(str(j) for j in held)
+
+
+def _second(dwg, canvas: Canvas, g: Graph, sec: Second, ident: str, style: Style, mu_phi: float) -> None:
+    """A graph's second curve at the positions (a driving law: M_d on M_r's graph, A_r on the
+    works'): its ordinates from the φ axis measured (``Md@k``, ``Ar@k``: length × μ = |value|),
+    its dots, and for a work its chords (dashed, as the graph's own)."""
+    oy = g.origin[1]
+    thin = fmt(style.thin, 3)
+    grp = dwg.g(id=ident, stroke=style.colour, fill="none", stroke_linecap="round")
+    grp.attribs["data-diagram"] = f"{g.quantity}-{sec.name}"
+    grp.attribs["data-scale"] = repr(g.mu)
+    grp.attribs["data-mu-phi"] = repr(mu_phi)
+    px, py = canvas.paper(g.origin)
+    grp.attribs["data-origin"] = f"{fmt(px, style.decimals)},{fmt(py, style.decimals)}"
+    grp.attribs["data-error"] = repr(sec.error)
+    ords = dwg.g(id=f"{ident}-ordinates", stroke=style.construction_colour, stroke_width=thin)
+    ords.attribs["data-mu"] = repr(g.mu)
+    ords.attribs["data-plan"] = "bound"
+    ords.attribs["data-vectors"] = str(len(sec.at_positions))
+    for k, (x, y, value) in enumerate(sec.at_positions):
+        el = canvas.line(ords, (x, oy), (x, y), width=style.thin, ink=abs(y - oy) > 0.3, id=f"{ident}-ord{k}")
+        _tag(el, canvas, f"{sec.name}@{k}", abs(value), (x, oy), (x, y) if y != oy else (x, oy + 1.0), f"t{k}",
+             f"{sec.name}{k}")
+    grp.add(ords)
+    grp.add(_dots(dwg, canvas, sec.at_positions, "exact", style.colour, 0.5, f"{ident}-dots", f"{ident}-e", mu_phi,
+                  "phi"))
+    if sec.chords:
+        chords = canvas.polyline(grp, [(x, y) for x, y, _ in sec.chords], width=style.thin, stroke_width=thin,
+                                 stroke=style.component_colour, stroke_dasharray="2 1", id=f"{ident}-graphical")
+        chords.attribs["data-kind"] = "graphical"
+        grp.add(_dots(dwg, canvas, sec.chords, "graphical", style.component_colour, 0.5, f"{ident}-gdots",
+                      f"{ident}-g", mu_phi, "phi"))
+    dwg.add(grp)
+
+
+def _degrees(dwg, canvas: Canvas, d: DynamicsDiagrams, last: Graph, ident: str, style: Style) -> None:
+    """The crank angle in degrees under ``last`` (ΔT(φ)), aligned with the graphs' φ axes: a tick
+    every 90° (every 360° past four turns), the turns' ends marked longer."""
+    step = 90.0 if d.turns <= 4 else 360.0
+    ticks = [(k * step, math.radians(k * step) / d.mu_phi) for k in range(round(360.0 * d.turns / step) + 1)]
+    y = last.origin[1] + last.low - 9.0
+    g = dwg.add(dwg.g(id=ident, stroke=style.colour, fill="none"))
+    texts = dwg.add(dwg.g(id=f"{ident}-text", fill=style.colour))
+    x_end = d.length + 7.0
+    canvas.line(g, (0.0, y), (x_end, y), width=style.vector, stroke_width=fmt(style.vector, 3), id=f"{ident}-axis")
+    arrow(canvas, g, (0.0, y), (x_end, y), style.colour, f"{ident}-head", style, of=f"{ident}-axis")
+    canvas.text(texts, canvas.paper((x_end + 1.5, y - 1.2)), "φ, °", size=style.text, ident=f"{ident}-name")
+    for k, (deg, x) in enumerate(ticks):
+        tall = 2.5 if deg % 360.0 == 0.0 else 1.5
+        canvas.line(g, (x, y), (x, y - tall), width=style.thin, stroke_width=fmt(style.thin, 3), id=f"{ident}-t{k}")
+        num = f"{deg:g}°"
+        canvas.text(texts, canvas.paper((x - width_of(num, style.small_text) / 2, y - 5.0)), num,
+                    size=style.small_text, ident=f"{ident}-n{k}")
 
 
 def draw_startup(d: StartupDiagrams, heading: Heading, *, ident: str, style: Style = Style(),

@@ -31,13 +31,17 @@ from ..scene.values import DriveKind
 from .piecewise import Piecewise
 from .turning import STEADY_RTOL, _curve, _Pieces      # [turning]'s evaluator: one reading of a torque
 
-__all__ = ["torque_at", "law_edges", "panel_deg", "law_moment", "check_laws", "laws_of", "balanced", "GRADE_DEG"]
+__all__ = ["torque_at", "law_edges", "panel_deg", "law_moment", "check_laws", "laws_of", "balanced", "GRADE_DEG",
+           "SHEET_POSITIONS"]
 
 #: The narrowest panel at a semicircle's end, degrees (2^-26°: wider than the 1e-12 rad the
 #: machine merges edges within).
 GRADE_DEG = 2.0 ** -26
 #: A harmonic of order k gets panels of at most this many degrees / k.
 PHASE_DEG = 20.0
+#: Most positions over a cycle of several turns on the dynamics sheet: its φ axis (190 mm) numbers
+#: them 5.3 mm apart, and its Wittenbauer curve labels each (48 crowd it: labels cross its lines).
+SHEET_POSITIONS = 36
 
 
 @functools.lru_cache(maxsize=64)
@@ -106,7 +110,7 @@ def check_laws(scene: Scene) -> None:
     """What the laws in the crank angle and a cycle of several turns cannot do yet, refused in one
     line: a law or a longer cycle on a drive that is not a crank; a moment's law with the force
     analysis (the force plans, the lever and [balance] take constant moments); the dynamics sheet
-    with a driving law or a cycle of several turns (it draws one turn under a constant moment)."""
+    over a cycle of several turns with more than :data:`SHEET_POSITIONS` positions in it."""
     dyn = scene.dynamics
     moment = next((m for m in scene.moments if m.law is not None), None)
     key = "dynamics.driving" if dyn.torque is not None else f"moments[{moment.index}].law" if moment is not None \
@@ -120,10 +124,13 @@ def check_laws(scene: Scene) -> None:
         raise SceneError("the force plans, the lever and [balance] take constant moments; a moment's law in the crank "
                          'angle is read by [dynamics] alone: give value, or remove "forces" and "lever" from draw '
                          "and [balance]", key=f"moments[{moment.index}].law")
-    if "dynamics" in scene.draw and (dyn.torque is not None or dyn.period != 360.0):
-        what = "a driving law" if dyn.torque is not None else f"a cycle of {dyn.period:g}°"
-        raise SceneError(f"the dynamics sheet draws one turn under a constant driving moment, not yet {what}: remove "
-                         '"dynamics" from draw (the report\'s cycle.dynamics holds the cycle)', key="plans.draw")
+    turns = round(dyn.period / 360.0)
+    if "dynamics" in scene.draw and turns > 1 and scene.cycle is not None \
+            and scene.cycle.positions * turns > SHEET_POSITIONS:
+        raise SceneError(f"the dynamics sheet numbers the cycle's {scene.cycle.positions} × {turns} positions along "
+                         f"its φ axis and on Wittenbauer's curve: at most {SHEET_POSITIONS} over a cycle of several "
+                         f"turns; give positions = {SHEET_POSITIONS // turns} or fewer, or remove \"dynamics\" from draw",
+                         key="drive.positions")
 
 
 def balanced(driving: Piecewise, moment: Piecewise, size: float, span: float) -> float:

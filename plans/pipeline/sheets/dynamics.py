@@ -78,7 +78,9 @@ def dynamics_sheets(scene: Scene, machine: MachineDynamics, forces: Forces | Non
     if "dynamics" in scene.draw:
         d = dynamics_diagrams(machine)
         link = scene.drive.link
-        position = f"{len(th)} positions from φ_{link} = {machine.start % 360.0:.6g}°, ω_m = {machine.omega_m:g} rad/s, " \
+        cycle = f"{len(th)} positions" if d.turns == 1 else \
+            f"{len(th)} positions over {machine.period:g}° ({d.turns} turns)"
+        position = f"{cycle} from φ_{link} = {machine.start % 360.0:.6g}°, ω_m = {machine.omega_m:g} rad/s, " \
                    + (f"δ = {wheel.delta:.4g}" if not wheel.given else f"J = {wheel.inertia_exact:g} kg·m² given")
         files[f"{stem}-dynamics.svg"] = draw_dynamics(
             d, Heading(scene.title, "Dynamics: reduced moment and inertia, work, energy, flywheel", position),
@@ -90,6 +92,10 @@ def dynamics_sheets(scene: Scene, machine: MachineDynamics, forces: Forces | Non
                                          "inertia": w.inertia,
                                          "reading_error": None if w.segment is None else _reading(machine, d),
                                          "psi": {t.which: t.psi for t in w.tangents}}}
+        if d.seconds:       # a driving law: A_r by chords too
+            data["sheet"]["graphical_error"]["A_r"] = next(c.error for c in d.seconds if c.chords)
+        if d.turns > 1:
+            data["sheet"]["turned_inertia"] = "one turn"
     if started is not None:
         data["startup"] = _startup_data(machine, started)
         if "startup" in scene.draw:
@@ -166,13 +172,29 @@ def _notes(machine: MachineDynamics, d: DynamicsDiagrams) -> tuple[str, ...]:
     wheel = machine.flywheel
     loads, line = ("A_d", "A_r") if d.loads_drive else ("A_r", "A_d")
     what = "consumer's" if d.loads_drive else "driving"
-    out = [f"M_r: the loads' reduced moment, positive where it drives the crank. {loads} = "
-           f"{'' if d.loads_drive else '−'}∫M_r dφ by graphical integration by chords (dashed): over each of the "
-           f"{d.positions} intervals M_r is taken at the interval's middle and the chord rises by that ordinate × Δφ "
-           f"(the pole at H = {d.pole:g} mm: μ_A = μ_M·μ_φ·H); {line}: the constant {what} moment "
-           f"{abs(machine.constant):.6g} N·m, the straight line to the end of {loads}. ΔT = A_d − A_r. Solid: exact.",
-           f"Graphical {loads} differs from the exact by at most {100 * a.error:.2g} % of its largest value, "
-           f"graphical ΔT by at most {100 * t.error:.2g} %."]
+    if d.seconds:
+        r_error = next(c.error for c in d.seconds if c.chords)
+        out = [f"M_r: the loads' reduced moment, positive where it drives the crank; M_d: the driving moment, the law "
+               f"given against the crank angle (its mean {machine.constant:.6g} N·m). A_d = ∫M_d dφ and A_r = −∫M_r dφ "
+               f"by graphical integration by chords (dashed): over each of the {d.positions} intervals the moment is "
+               f"taken at the interval's middle and the chord rises by that ordinate × Δφ (the pole at H = {d.pole:g} "
+               f"mm: μ_A = μ_M·μ_φ·H). ΔT = A_d − A_r. Solid: exact.",
+               f"Graphical A_d differs from the exact by at most {100 * a.error:.2g} % of its largest value, A_r by "
+               f"{100 * r_error:.2g} %, graphical ΔT by at most {100 * t.error:.2g} %."]
+    else:
+        out = [f"M_r: the loads' reduced moment, positive where it drives the crank. {loads} = "
+               f"{'' if d.loads_drive else '−'}∫M_r dφ by graphical integration by chords (dashed): over each of the "
+               f"{d.positions} intervals M_r is taken at the interval's middle and the chord rises by that ordinate × Δφ "
+               f"(the pole at H = {d.pole:g} mm: μ_A = μ_M·μ_φ·H); {line}: the constant {what} moment "
+               f"{abs(machine.constant):.6g} N·m, the straight line to the end of {loads}. ΔT = A_d − A_r. Solid: exact.",
+               f"Graphical {loads} differs from the exact by at most {100 * a.error:.2g} % of its largest value, "
+               f"graphical ΔT by at most {100 * t.error:.2g} %."]
+    if d.turns > 1:
+        n = d.per_turn
+        out.append(f"The cycle is {machine.period:g}°, {d.turns} turns of the crank: M_r, the works and ΔT run over it "
+                   f"(positions 0 … {d.positions}, every {360.0 / n:g}°), and so does Wittenbauer's curve. I_r repeats "
+                   f"every turn, as the linkage does: it is drawn turned over one turn, positions k, k + {n}, … on one "
+                   f"row.")
     if w.segment is not None:
         tmax, tmin = w.tangents
         jw = wheel.inertia_wittenbauer
