@@ -218,8 +218,9 @@ def _dynamics(scene: Scene, report: Mapping[str, Any]) -> list[Asked]:
     d = report["cycle"]["dynamics"]
     fw = d["flywheel"]
     moments = max((abs(float(m)) for m in d["reduced_moment"]), default=0.0)
-    out = _nonzero([Asked("M_{d}", "N·m", "constant driving moment on the driving link",
-                          float(d["constant_moment"]))], {"N·m": moments})
+    out = [] if scene.dynamics.driving == "law" else \
+        _nonzero([Asked("M_{d}", "N·m", "constant driving moment on the driving link",
+                        float(d["constant_moment"]))], {"N·m": moments})     # a driving law is given, not asked
     if fw.get("given"):
         out += _nonzero([Asked("δ", "—", "coefficient of speed fluctuation reached", float(d["delta_reached"]))],
                         {"—": 1.0})

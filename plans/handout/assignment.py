@@ -21,12 +21,13 @@ from __future__ import annotations
 import math
 
 from ..scene import Scene
+from ..scene.turning import Torque
 from .asked import Asked, asked, kind_of
 from .rotor_sheet import rotor_cells, rotor_task
 from .solving import variant_data
 from .variants import Drawn, Handout
 
-__all__ = ["assignment_svg", "law_corners", "loads_cells", "task_text", "variant_asked", "given_and_task",
+__all__ = ["assignment_svg", "law_corners", "loads_cells", "task_text", "torque_text", "variant_asked", "given_and_task",
            "answers_at", "TYPING"]
 
 
@@ -120,8 +121,32 @@ def loads_cells(scene: Scene, unit: str = "m") -> tuple[list[str], list[str]]:
             angle = math.degrees(math.atan2(f.vector[1], f.vector[0])) % 360.0 + 0.0
             cells.append(f"{name} = {size:g} N at {f.at}, {angle:g}°")
     for mo in scene.moments:
-        cells.append(f"M_{{{mo.link}}} = {mo.value:g} N·m")
+        if mo.law is not None:
+            laws.append(f"M_{{{mo.link}}} on link {mo.link} (N·m, counter-clockwise +) against the angle φ link {scene.drive.link} turns "
+                        f"from the first position: {torque_text(mo.law)}.")
+        else:
+            cells.append(f"M_{{{mo.link}}} = {mo.value:g} N·m")
     return cells, laws
+
+
+def torque_text(law: Torque) -> str:
+    """A law in the crank angle as a task states it: its table's corners (``0° → 0, 30° → 3000``,
+    linear between), its harmonics (T0 + Σ A·sin(kφ + φ0)) or its shapes, each with its numbers."""
+    if law.table:
+        rows = ", ".join(f"{x:g}° → {y:g}" for x, y in law_corners(law.table))
+        return f"{rows} (linear between)"
+    if law.harmonics:
+        terms = " ".join(f"{'+' if a >= 0 else '−'} {abs(a):g}·sin({k:g}φ{f' + {p:g}°' if p else ''})"
+                         for a, k, p in law.harmonics)
+        return f"{law.mean:g} {terms}"
+    parts = []
+    for sh in law.shapes:
+        where = f"from {sh.start:g}° to {sh.end:g}°"
+        if sh.kind == "triangle":
+            parts.append(f"a triangle {where}, {sh.peak:g} at {sh.apex:g}°")
+        else:
+            parts.append(f"a {sh.kind} {where}, {'peak' if sh.kind == 'semicircle' else 'height'} {sh.peak:g}")
+    return ("the sum of " if len(parts) > 1 else "") + "; ".join(parts) + " (zero elsewhere)"
 
 
 def task_text(scene: Scene, asked: tuple[Asked, ...], laws: list[str], at: str | None = None) -> str:
@@ -146,11 +171,19 @@ def task_text(scene: Scene, asked: tuple[Asked, ...], laws: list[str], at: str |
         fw = next(a for a in asked if a.symbol in ("J_{fw}", "δ"))
         aim = ("the flywheel's moment of inertia J_{fw} on link " + j + " that keeps the speed within the given δ"
                if fw.symbol == "J_{fw}" else "the coefficient of speed fluctuation δ reached with the given flywheel")
-        text = (f"Task: over the cycle's positions find the reduced moment of the loads and the reduced moment of "
+        dyn = scene.dynamics
+        turns = round(dyn.period / 360.0)
+        cycle = "the cycle's positions" if turns == 1 else f"the cycle's positions ({turns} turns of link {j})"
+        if dyn.driving == "law":
+            laws = [f"M_{{d}} on link {j} (N·m, in its sense of rotation) against the angle φ it turns from the first position: "
+                    f"{torque_text(dyn.torque)}.", *laws]
+            find = f"draw the given M_{{d}}(φ) beside M_r; find {aim}."
+        else:
+            find = f"find the constant driving moment M_{{d}} and {aim}."
+        text = (f"Task: over {cycle} find the reduced moment of the loads and the reduced moment of "
                 f"inertia on link {j}; draw the works' diagrams (by graphical integration by chords: over each "
                 f"interval between two positions the ordinate of M_r at its middle), the kinetic energy's change and "
-                f"Wittenbauer's diagram through the positions' points; find the constant driving moment M_{{d}} and "
-                f"{aim}.")
+                f"Wittenbauer's diagram through the positions' points; {find}")
     return " ".join([text, *laws])
 
 
@@ -164,8 +197,9 @@ def _dynamics_cells(scene: Scene) -> tuple[list[str], str]:
         cells.append(f"δ = {dyn.delta:g}")
     if dyn.rotor_inertia:
         cells.append(f"J_{{rotor}} = {dyn.rotor_inertia:g} kg·m²")
-    n = len(d.values)
-    position = f"{n} positions of link {j} over its cycle, ω_{{{j}m}} = {d.speed:g} rad/s"
+    n, turns = len(d.values), round(dyn.period / 360.0)
+    over = "its cycle" if turns == 1 else f"each of the {turns} turns of its cycle"
+    position = f"{n} positions of link {j} over {over}, ω_{{{j}m}} = {d.speed:g} rad/s"
     return cells, position
 
 

@@ -11,8 +11,9 @@ Refining the positions instead would take 36 to 72 of them for the examples whos
 (a force analysis each), and the cycle's positions are equally spaced (plans.dynamics): the task
 keeps its positions and is marked against the method at them.
 
-- M_d: the constant moment whose work over the cycle equals the chords' work, −A_g(2π)/2π
-  (counter-clockwise +, as the JSON's ``constant_moment``);
+- M_d: the constant moment whose work over the cycle equals the chords' work, −A_g(Φ)/Φ over
+  the cycle Φ (2π a turn; counter-clockwise +, as the JSON's ``constant_moment``); not asked when
+  ``[dynamics] driving`` is a law (it is then given);
 - J_fw: Wittenbauer's tangents, tan ψ = ω_m²(1 ± δ)/2, to the N points (I_r, ΔT_g) joined by
   straight lines (so the tangents touch at points): J = (max_k(ΔT_k − k₊·I_k) −
   min_k(ΔT_k − k₋·I_k))/(ω_m²·δ), I_r with the rotor's;
@@ -20,7 +21,7 @@ keeps its positions and is marked against the method at them.
   tangents falls as δ grows).
 
 Each has its drawing precision, a length read to :data:`READ_MM` (the dynamics sheet's ±0.5 mm)
-at the key's scales: M_d from A_g(2π) on the work graph, μ_A·READ_MM/2π; J and δ from the
+at the key's scales: M_d from A_g(Φ) on the work graph, μ_A·READ_MM/Φ; J and δ from the
 segment kl the tangents cut on Wittenbauer's ΔT axis, μ_T·READ_MM/(ω_m²·δ) and
 μ_T·READ_MM/(ω_m²·J).
 
@@ -109,9 +110,10 @@ def chord_answers(scene: Scene) -> Chords:
     d = dynamics_diagrams(machine)
     _, a, t, _ = d.graphs
     n = d.positions
-    work = a.graphical[-1][2]                  # the graph's work at 2π: ± the loads' (A_d of an engine)
+    work = a.graphical[-1][2]                  # the graph's work over the cycle: ± the loads' (A_d of an engine)
     loads = work if d.loads_drive else -work
-    moment = machine.sense * (-loads / (2.0 * math.pi)) + 0.0
+    cycle = math.radians(machine.period)
+    moment = machine.sense * (-loads / cycle) + 0.0
     energy = np.array([v for _, _, v in t.graphical[:n]])
     inertia = np.asarray(machine.inertia(machine.theta), dtype=float)
     wheel, w2 = machine.flywheel, machine.omega_m ** 2
@@ -124,7 +126,7 @@ def chord_answers(scene: Scene) -> Chords:
         delta, ddelta = None, 0.0
         j = tangent_inertia(energy, inertia, machine.omega_m, wheel.delta)
         dj = t.mu * READ_MM / (w2 * wheel.delta)
-    out = Chords(positions=n, moment=moment, moment_precision=a.mu * READ_MM / (2.0 * math.pi), inertia=j,
+    out = Chords(positions=n, moment=moment, moment_precision=a.mu * READ_MM / cycle, inertia=j,
                  inertia_precision=dj or 0.0, delta=delta, delta_precision=ddelta)
     key = id(scene)
     _CACHE[key] = (weakref.ref(scene, lambda _, k=key: _CACHE.pop(k, None)), out)
