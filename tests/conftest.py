@@ -8,6 +8,32 @@ EXAMPLES = sorted((Path(__file__).resolve().parent.parent / "plans" / "examples"
 #: The example the bad-input and contract tests edit: the central crank-slider.
 CRANK_SLIDER = next(p for p in EXAMPLES if p.stem == "crank_slider_central")
 
+#: A central crank-slider machine's linkage as scene text (no title, loads or [dynamics]): crank
+#: OA 0.1 m, rod AB 0.4 m, ω1 = 10 rad/s CCW, 12 positions from the outer extreme.
+CRANK_SLIDER_MACHINE = """[points]
+O = [0.0, 0.0]
+A = [0.1, 0.0]
+B = [0.5, 0.0]
+[links]
+0 = ["O"]
+1 = ["O", "A"]
+2 = ["A", "B"]
+3 = ["B"]
+[[sliders]]
+link = "3"
+on = "0"
+through = "B"
+angle = 0.0
+[drive]
+link = "1"
+omega = 10.0
+positions = 12
+start = "extreme"
+[lengths]
+OA = 0.1
+AB = 0.4
+"""
+
 
 def sheet_words(svg_text: str) -> str:
     """Everything a sheet writes, one ``<text>`` per line, its runs joined (a subscript run

@@ -163,8 +163,9 @@ def test_sliding_triads_with_four_and_six_assemblies(layout, count):
 
 # --- other forms, against the multi-start least squares ----------------------------------------
 
-def _class3(links: dict, sliders: list, drop=()) -> dict:
-    d = _toml("class3_six_link")
+def _group(example: str, links: dict, sliders: list, drop=()) -> dict:
+    """``example``'s scene with ``links`` changed, the points ``drop`` removed and ``sliders``, at 45°."""
+    d = _toml(example)
     d["links"].update(links)
     for p in drop:
         d["points"].pop(p)
@@ -172,17 +173,14 @@ def _class3(links: dict, sliders: list, drop=()) -> dict:
     d["drive"]["angle"] = [45.0]
     d["plans"] = {"draw": ["scheme"]}
     return d
+
+
+def _class3(links: dict, sliders: list, drop=()) -> dict:
+    return _group("class3_six_link", links, sliders, drop)
 
 
 def _class4(links: dict, sliders: list, drop=()) -> dict:
-    d = _toml("class4_six_link")
-    d["links"].update(links)
-    for p in drop:
-        d["points"].pop(p)
-    d["sliders"] = sliders
-    d["drive"]["angle"] = [45.0]
-    d["plans"] = {"draw": ["scheme"]}
-    return d
+    return _group("class4_six_link", links, sliders, drop)
 
 
 def _slide(link, on, through, angle):

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 from scipy.optimize import minimize_scalar
 
-from conftest import EXAMPLES as _ALL, plans_cli, refused_line
+from conftest import CRANK_SLIDER_MACHINE, EXAMPLES as _ALL, plans_cli, refused_line
 from plans.checking import check_svg
 from plans.dynamics import flywheel_for, machine_dynamics, startup
 from plans.dynamics.piecewise import fit, nodes_of
@@ -123,29 +123,7 @@ def test_train_at_rest_is_refused_at_its_input(tmp_path, rpm):
 #: A central crank-slider, crank 0.1 m, rod 0.4 m, ω = 10 rad/s, no masses; F = 1000 N on the
 #: slider along −x, the whole cycle.
 CRANK_SLIDER = """title = "crank-slider, no masses"
-[points]
-O = [0.0, 0.0]
-A = [0.1, 0.0]
-B = [0.5, 0.0]
-[links]
-0 = ["O"]
-1 = ["O", "A"]
-2 = ["A", "B"]
-3 = ["B"]
-[[sliders]]
-link = "3"
-on = "0"
-through = "B"
-angle = 0.0
-[drive]
-link = "1"
-omega = 10.0
-positions = 12
-start = "extreme"
-[lengths]
-OA = 0.1
-AB = 0.4
-[[forces]]
+""" + CRANK_SLIDER_MACHINE + """[[forces]]
 link = "3"
 at = "B"
 vector = [-1000.0, 0.0]

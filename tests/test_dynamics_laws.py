@@ -13,7 +13,7 @@ import tomllib
 import numpy as np
 import pytest
 
-from conftest import EXAMPLES as _ALL, refused_line
+from conftest import CRANK_SLIDER_MACHINE, EXAMPLES as _ALL, refused_line
 from plans import render
 from plans.checking import check_svg
 from plans.dynamics import analyse_turning, machine_dynamics
@@ -29,29 +29,7 @@ ENGINE = EXAMPLES / "flywheel" / "engine_crank_slider.toml"
 #: reduced inertia is 2 kg·m², constant), ω_m = 10 rad/s CCW, δ = 0.05; a constant load of 500 N·m
 #: against the crank, and a harmonic driving law of mean 500 N·m: T = 500 + 150·sin(3θ + 20°).
 ROTOR = """title = "crank-slider, rotor only"
-[points]
-O = [0.0, 0.0]
-A = [0.1, 0.0]
-B = [0.5, 0.0]
-[links]
-0 = ["O"]
-1 = ["O", "A"]
-2 = ["A", "B"]
-3 = ["B"]
-[[sliders]]
-link = "3"
-on = "0"
-through = "B"
-angle = 0.0
-[drive]
-link = "1"
-omega = 10.0
-positions = 12
-start = "extreme"
-[lengths]
-OA = 0.1
-AB = 0.4
-[[moments]]
+""" + CRANK_SLIDER_MACHINE + """[[moments]]
 link = "1"
 value = -500.0
 [dynamics]

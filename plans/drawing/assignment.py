@@ -32,7 +32,7 @@ from .sheet import FORMATS, TitleBlock, new_sheet
 from .style import Style
 from .text import Box, Run, box, runs, width, wrap
 
-__all__ = ["draw_assignment", "given_cells", "Layout", "LAYOUT", "Area", "area_size", "frame_areas", "drawings",
+__all__ = ["draw_assignment", "given_cells", "Layout", "LAYOUT", "Area", "area_size", "frame_areas", "answer_sheets", "drawings",
            "gear_frames", "add_frames"]
 
 
@@ -370,16 +370,24 @@ def draw_assignment(scheme_at: Callable[[float], Scheme], scene: Scene, *, varia
     for k, line in enumerate(task):
         canvas.text(texts, (t.x0, y + 5.0 * k), line, size=style.text, ident=f"{ident}-task{k}")
     frame_areas(dwg, canvas, list(zip(areas[:first], _frames(cols, sizes, region, layout.gap))), ident, style)
-    out = [dwg.tostring()]
-    for k, batch in enumerate(sheets):
-        block = TitleBlock(scene.title, f"Assignment, {variant}: answer sheet {k + 2}", position,
-                           "plan scales: the student's")
+    placed = [_batch_frames(batch, layout, style) for batch in sheets]
+    return (dwg.tostring(), *answer_sheets(scene.title, variant, position, "plan scales: the student's", placed,
+                                           fmt_, style))
+
+
+def answer_sheets(title: str, variant: str, position: str, scales: str,
+                  batches: Sequence[Sequence[tuple[Area, Box]]], fmt_, style: Style) -> list[str]:
+    """SVG texts of an assignment's answer sheets 2, 3, …: each batch's framed areas (placed) on a
+    sheet of format ``fmt_`` with its title block (``variant``: "variant 01")."""
+    out = []
+    for k, batch in enumerate(batches):
+        block = TitleBlock(title, f"Assignment, {variant}: answer sheet {k + 2}", position, scales)
         ident = f"assignment-{k + 2}"
         dwg, canvas = new_sheet(fmt_, (0.0, 0.0, 1.0, 1.0), ident=ident, style=style, block=block)
         dwg.attribs["data-sheet"] = "assignment"
-        frame_areas(dwg, canvas, _batch_frames(batch, layout, style), ident, style)
+        frame_areas(dwg, canvas, batch, ident, style)
         out.append(dwg.tostring())
-    return tuple(out)
+    return out
 
 
 def _plain_name(area: Area) -> str:

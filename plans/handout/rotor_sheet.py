@@ -189,7 +189,7 @@ def rotor_sheets(scene: Scene, key: str, variant: str, style: Style = Style()) -
     """SVG texts of a rotor variant's assignment: the assignment sheet, then an answer sheet for
     each batch of areas it has no room for (``key``: the variant's -balancing sheet, whose
     polygons size the areas; ``variant``: "variant 01")."""
-    from ..drawing.assignment import frame_areas
+    from ..drawing.assignment import answer_sheets, frame_areas
     from ..drawing.sheet import FORMATS, TitleBlock, new_sheet
 
     r = scene.rotor
@@ -217,13 +217,5 @@ def rotor_sheets(scene: Scene, key: str, variant: str, style: Style = Style()) -
         canvas.text(texts, (LEFT.x0, task_top + 5.0 * k), line, size=style.text, ident=f"assignment-task{k}")
     frame_areas(dwg, canvas, placed, "assignment", style)
     canvas.place_labels(dwg.add(dwg.g(id="assignment-leaders")))
-    out = [dwg.tostring()]
-    for k, batch in enumerate(batches):
-        block = TitleBlock(scene.title, f"Assignment, {variant}: answer sheet {k + 2}", position,
-                           "polygon scales: the student's")
-        ident = f"assignment-{k + 2}"
-        dwg, canvas = new_sheet(fmt_, (0.0, 0.0, 1.0, 1.0), ident=ident, style=style, block=block)
-        dwg.attribs["data-sheet"] = "assignment"
-        frame_areas(dwg, canvas, batch, ident, style)
-        out.append(dwg.tostring())
-    return tuple(out)
+    return (dwg.tostring(), *answer_sheets(scene.title, variant, position, "polygon scales: the student's", batches,
+                                           fmt_, style))
