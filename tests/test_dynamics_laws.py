@@ -275,7 +275,7 @@ BAD = {
     "no dynamics": (TWO_TURNS.split("[dynamics]")[0] + '[plans]\noutput = "3"\ndraw = ["scheme"]\n', "moments[0].law",
                     "add [dynamics]"),
     "forces": (TWO_TURNS.replace('draw = ["scheme"]', 'draw = ["scheme", "forces"]'), "moments[0].law",
-               "take constant moments"),
+               "take a law over one turn"),
     "true speed": (TWO_TURNS.replace("period = 720", "period = 720\ntrue_speed = true"), "dynamics.true_speed",
                    "not done yet over a cycle of 720°"),
     "simulate": (TWO_TURNS.replace("period = 720", "period = 720\nsimulate = { t_end = 1.0 }")

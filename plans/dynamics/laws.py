@@ -24,14 +24,13 @@ import functools
 import numpy as np
 
 from ..errors import SceneError
-from ..kinematics import Motion
 from ..scene import Scene
 from ..scene.turning import Torque
 from ..scene.values import DriveKind
 from .piecewise import Piecewise
 from .turning import STEADY_RTOL, _curve, _Pieces      # [turning]'s evaluator: one reading of a torque
 
-__all__ = ["torque_at", "law_edges", "panel_deg", "law_moment", "check_laws", "laws_of", "balanced", "GRADE_DEG",
+__all__ = ["torque_at", "law_edges", "panel_deg", "law_values", "check_laws", "laws_of", "balanced", "GRADE_DEG",
            "SHEET_POSITIONS"]
 
 #: The narrowest panel at a semicircle's end, degrees (2^-26°: wider than the 1e-12 rad the
@@ -91,25 +90,18 @@ def panel_deg(scene: Scene, longest: float) -> float:
     return min([longest] + [PHASE_DEG / k for k in orders])
 
 
-def law_moment(motion: Motion, scene: Scene, theta: np.ndarray) -> np.ndarray:
-    """The reduced moment (N·m, CCW) of the moments with a law at ``theta`` (rad, the crank's
-    turned angle; one per position of ``motion``, solved at the crank's constant ω1):
-    Σ M(θ)·ω_link/ω1, M CCW positive."""
-    out = np.zeros(len(motion))
-    laws = [m for m in scene.moments if m.law is not None]
-    if not laws:
-        return out
-    w1 = float(motion.mechanism.drive.speed)
+def law_values(scene: Scene, theta: np.ndarray) -> dict[int, np.ndarray]:
+    """Each moment with a law (its index in ``[[moments]]`` → N·m, CCW positive) at ``theta``
+    (rad, the crank's turned angle from the cycle's first position, 0 … the period)."""
     deg = np.degrees(np.asarray(theta, dtype=float))
-    for m in laws:
-        out += torque_at(m.law, scene.dynamics.period, deg) * motion.links[m.link].omega / w1
-    return out
+    return {m.index: torque_at(m.law, scene.dynamics.period, deg) for m in scene.moments if m.law is not None}
 
 
 def check_laws(scene: Scene) -> None:
     """What the laws in the crank angle and a cycle of several turns cannot do yet, refused in one
     line: a law or a longer cycle on a drive that is not a crank; a moment's law with the force
-    analysis (the force plans, the lever and [balance] take constant moments); the dynamics sheet
+    analysis over a cycle of several turns (a crank position is at several angles of the cycle);
+    the dynamics sheet
     over a cycle of several turns with more than :data:`SHEET_POSITIONS` positions in it."""
     dyn = scene.dynamics
     moment = next((m for m in scene.moments if m.law is not None), None)
@@ -120,11 +112,12 @@ def check_laws(scene: Scene) -> None:
     if scene.drive.kind != DriveKind.ROTARY:
         raise SceneError(f"a law in the crank angle and a cycle of several turns need a crank (a rotary drive); link "
                          f"{scene.drive.link} is a {scene.drive.kind.value} drive", key=key)
-    if moment is not None and scene.wants_forces:
-        raise SceneError("the force plans, the lever and [balance] take constant moments; a moment's law in the crank "
-                         'angle is read by [dynamics] alone: give value, or remove "forces" and "lever" from draw '
-                         "and [balance]", key=f"moments[{moment.index}].law")
     turns = round(dyn.period / 360.0)
+    if moment is not None and scene.wants_forces and turns > 1:
+        raise SceneError(f"over a cycle of {turns} turns a position of the crank is at {turns} angles of the cycle, "
+                         "where a moment's law differs: the force plans, the lever and [balance] take a law over one "
+                         'turn (period = 360); give value, or remove "forces" and "lever" from draw and [balance]',
+                         key=f"moments[{moment.index}].law")
     if "dynamics" in scene.draw and turns > 1 and scene.cycle is not None \
             and scene.cycle.positions * turns > SHEET_POSITIONS:
         raise SceneError(f"the dynamics sheet numbers the cycle's {scene.cycle.positions} × {turns} positions along "

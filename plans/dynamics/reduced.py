@@ -15,7 +15,7 @@ import numpy as np
 from ..kinematics import Motion
 from ..kinetostatics import Travel, applied_loads
 from ..scene import Scene
-from .laws import law_moment
+from .laws import law_values
 
 __all__ = ["Reduced", "reduce"]
 
@@ -37,13 +37,14 @@ def reduce(motion: Motion, scene: Scene, travel: Travel | None = None, theta: np
     motion's positions, for the moments with a law in it. The crank's own mass counts like any
     link's."""
     w1 = float(motion.mechanism.drive.speed)
-    loads, couples = applied_loads(motion, scene, travel, inertia=False)
-    n = len(motion)
-    power = np.zeros(n)
+    laws = None
     if any(m.law is not None for m in scene.moments):
         if theta is None:
             raise ValueError("a moment with a law in the crank angle needs theta, the crank's turned angle")
-        power += w1 * law_moment(motion, scene, theta)
+        laws = law_values(scene, theta)
+    loads, couples = applied_loads(motion, scene, travel, inertia=False, laws=laws)
+    n = len(motion)
+    power = np.zeros(n)
     for load in loads:
         power += np.sum(load.force * motion.links[load.link].velocity(load.point), axis=1)
     for couple in couples:

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Mapping
 
 import numpy as np
 
@@ -117,11 +118,14 @@ def forces_following(scene: Scene, cycle: Cycle) -> list[AppliedForce]:
 
 
 def applied_loads(motion: Motion, scene: Scene, travel: Travel | None = None, *,
-                  inertia: bool = True) -> tuple[tuple[Load, ...], tuple[Couple, ...]]:
+                  inertia: bool = True, laws: Mapping[int, np.ndarray] | None = None
+                  ) -> tuple[tuple[Load, ...], tuple[Couple, ...]]:
     """The given loads of ``scene`` on the solved ``motion``: inertia (links with a mass or an
     inertia only; left out when ``inertia`` is False), gravity (when set), external forces
     (a force with a law or a stroke reads the output's ``travel`` at the motion's positions)
-    and couples. The balancing element is not among them (the solver finds it).
+    and couples (a couple with a law in the crank angle takes its values at the positions from
+    ``laws``: the moment's index → N·m, CCW positive). The balancing element is not among them
+    (the solver finds it).
 
     Inertia needs accelerations: a motion solved to a lower order raises PlansError (the
     pipeline always solves to the order the loads need)."""
@@ -152,7 +156,11 @@ def applied_loads(motion: Motion, scene: Scene, travel: Travel | None = None, *,
         loads.append(Load(tag, f.link, motion.position(f.at, f.link), _force(vec), "external"))
     tags = _tags([f"M:ext:{m.link}" for m in scene.moments])
     for m, tag in zip(scene.moments, tags):
-        couples.append(Couple(tag, m.link, _moment(np.full(n, m.value)), "external"))
+        if m.law is not None and (laws is None or m.index not in laws):
+            raise PlansError(f"the moment on link {m.link} follows a law in the crank angle: give its values at the "
+                             f"motion's positions (laws = {{{m.index}: N·m, …}}; plans.dynamics.laws.law_values)")
+        value = np.asarray(laws[m.index], dtype=float) if m.law is not None else np.full(n, m.value)
+        couples.append(Couple(tag, m.link, _moment(value), "external"))
     return tuple(loads), tuple(couples)
 
 

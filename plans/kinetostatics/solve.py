@@ -39,6 +39,8 @@ from here. Must not import constructions or anything above the kinetostatics.
 
 from __future__ import annotations
 
+from typing import Mapping
+
 import numpy as np
 
 from ..kinematics import Motion
@@ -75,14 +77,16 @@ def _rod_components(s: _Solver, g: ComplexGroup, whole: list[ForceTerm]
     return taus, norms
 
 
-def solve_forces(motion: Motion, scene: Scene, *, closed_forms: bool = True, travel: Travel | None = None) -> Forces:
+def solve_forces(motion: Motion, scene: Scene, *, closed_forms: bool = True, travel: Travel | None = None,
+                 laws: Mapping[int, np.ndarray] | None = None) -> Forces:
     """The force analysis of ``scene`` on its solved ``motion`` (order 2 when a link has a
     mass or an inertia, order ≥ 1 for the power balance; order 0 gives no power check);
-    ``travel``: the output's travel at the motion's positions, for forces with a law or a stroke.
+    ``travel``: the output's travel at the motion's positions, for forces with a law or a stroke;
+    ``laws``: the values (N·m, CCW +) at the positions of the moments with a law in the crank angle.
 
     ``closed_forms=False`` solves the class II groups as linear systems too (the tests compare
     the two); their polygons then carry whole reactions, without the ``:n``/``:t`` split."""
-    s = _Solver(motion, scene, travel)
+    s = _Solver(motion, scene, travel, laws)
     mech, structure = s.mech, motion.structure
     for g in reversed(structure.groups):
         if isinstance(g, Group) and closed_forms:

@@ -8,6 +8,8 @@ Must not import :mod:`.solve` or anything above the kinetostatics.
 
 from __future__ import annotations
 
+from typing import Mapping
+
 import numpy as np
 
 from ..errors import PlansError, SceneError
@@ -35,11 +37,12 @@ POINT_RTOL = 1e-12
 class _Solver:
     """Accumulates loads and solved reactions link by link while the groups are solved."""
 
-    def __init__(self, motion: Motion, scene: Scene, travel: Travel | None = None):
+    def __init__(self, motion: Motion, scene: Scene, travel: Travel | None = None,
+                 laws: Mapping[int, np.ndarray] | None = None):
         self.motion = motion
         self.mech = motion.mechanism
         self.geo = _Geometry(motion)
-        self.loads, self.couples = applied_loads(motion, scene, travel)
+        self.loads, self.couples = applied_loads(motion, scene, travel, laws=laws)
         self.acting: dict[str, list[Load]] = {name: [l for l in self.loads if l.link == name] for name in self.mech.links}
         self.turning: dict[str, list[Couple]] = {name: [c for c in self.couples if c.link == name]
                                                  for name in self.mech.links}

@@ -14,6 +14,7 @@ from typing import Iterator
 import numpy as np
 
 from ..dynamics import MachineDynamics, Startup, at_true_speed, machine_dynamics, startup
+from ..dynamics.laws import check_laws, law_values
 from ..dynamics.shaking import ShakingAnalysis, shaking_analysis
 from ..kinematics import Motion, analyse
 from ..errors import SceneError
@@ -125,7 +126,11 @@ def force_analysis(scene: Scene, motion: Motion, cycle: Cycle | None = None) -> 
     if not scene.wants_forces:
         return None
     _ran("forces")
-    return solve_forces(motion, scene, travel=output_travel(scene, cycle))
+    laws = None
+    if any(m.law is not None for m in scene.moments):       # over one turn (check_laws): θ_k = k·|step|
+        check_laws(scene)
+        laws = law_values(scene, np.radians(abs(cycle.step)) * np.arange(len(motion)))
+    return solve_forces(motion, scene, travel=output_travel(scene, cycle), laws=laws)
 
 
 def output_travel(scene: Scene, cycle: Cycle | None) -> Travel | None:
