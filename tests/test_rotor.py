@@ -109,7 +109,11 @@ def test_khurmi_four_masses_in_four_planes():
     A→B 45°, B→C 70°, C→D 120° anticlockwise; balancing planes X 100 mm from A (the reference
     plane) and Y 400 mm beyond X, both at 100 mm radius. Printed, measured off the drawn polygons:
     the couple polygon's closing vector 7.3 kg·m², mY = 7.3/(0.1·0.4) = 182.5 kg; the force
-    polygon's 35.5 kg·m, mX = 355 kg. Bound: a polygon drawn to scale and measured, as the book
+    polygon's 35.5 kg·m, mX = 355 kg. The same problem (these masses, radii, rY·lY = 0.04 m²) with
+    its printed answers in public: B. K. Sarkar, "Theory of Machines", Illustration 3, p. 223, whose
+    FOSSEE Python companion (Theory_Of_Machines_by__B._K._Sarkar/Chapter8_1.ipynb) prints mY =
+    7.3/.04 = 182.5 kg, mX = 35./.1 = 350.0 kg, X 146° from A (tests/test_published_rotors.py).
+    Bound: a polygon drawn to scale and measured, as the book
     does, is good to about 2 % (its 7.3 against the exact 7.362 is 0.85 % off), so masses within
     2 %. The book's angles are read off its figure in its own sense; they are not asserted here —
     the exact ones come from the closed form below (a hand derivation, independent of plans)."""
