@@ -217,12 +217,42 @@ def test_every_form_agrees_with_brute_force(form):
     assert _agree(motion, g, 0, starts=120) == count
 
 
-def test_a_class_iv_rod_sliding_on_both_pairs_is_refused():
-    d = _class4({"3": ["C"], "2": ["A", "B"], "4": ["E", "F"]},
-                [_slide("3", "4", "C", 35.0), _slide("3", "2", "C", 100.0)], ("D",))
-    motion = solve_scene(parse_scene(d))
-    with pytest.raises(SceneError, match=r"IV\(2-3-4-5\) \(form RRPP-RR\): a rod slides on both its pairs"):
-        assemblies(motion, 0)
+#: A class IV group whose rod 3 slides on both plates (C on plate 4 at 35°, on plate 2 at 100°):
+#: plates 2 and 4 then turn together, and rod 5 alone decides where.
+LOCKED = _class4({"3": ["C"], "2": ["A", "B"], "4": ["E", "F"]},
+                 [_slide("3", "4", "C", 35.0), _slide("3", "2", "C", 100.0)], ("D",))
+
+
+def test_a_class_iv_rod_sliding_on_both_pairs_agrees_with_brute_force():
+    """Plates 2 and 4 pinned at A and E turn together (θ2 = θ4 = t): |B(t) − F(t)| = |BF| is
+    |c + R(t)·w|² = l², a trigonometric polynomial of degree 1 (two roots at most, here both real);
+    the multi-start search finds the same two, and at each the plates' angles are equal."""
+    motion = solve_scene(parse_scene(LOCKED))
+    g = motion.structure.groups[-1]
+    assert g.form == "RRPP-RR"
+    assert _agree(motion, g, 0, starts=120) == 2
+    for a in group_assemblies(motion, g, 0).assemblies:
+        assert math.isclose(a.poses["2"][2], a.poses["4"][2], abs_tol=1e-12) and a.poses["3"][2] == a.poses["2"][2]
+
+
+def test_a_class_iv_rod_sliding_on_both_pairs_in_closed_form():
+    """The two roots from the closed form: with A, E the pins and b = B − A, f = F − E in the
+    sketch, v = A − E and w = b − f: |v + R(t)w|² = l² gives cos(t + ∠w − ∠v) = (l² − |v|² −
+    |w|²)/(2|v||w|); both roots' plate angles equal the code's within 1e-12 rad."""
+    motion = solve_scene(parse_scene(LOCKED))
+    g = motion.structure.groups[-1]
+    pts = LOCKED["points"]
+    world_a = motion.position("A")[0]
+    e, b, f = (np.array(pts[k], float) for k in ("E", "B", "F"))
+    va, w = world_a - e, (b - np.array(pts["A"], float)) - (f - e)
+    l2 = float(np.sum((b - f) ** 2))
+    c = (l2 - va @ va - w @ w) / (2.0 * math.hypot(*va) * math.hypot(*w))
+    tau = math.atan2(va[1], va[0]) - math.atan2(w[1], w[0])
+    want = [tau + s * math.acos(c) for s in (1.0, -1.0)]
+    got = [a.poses["2"][2] for a in group_assemblies(motion, g, 0).assemblies]
+    assert len(got) == 2
+    for t in want:       # each root is one assembly's angle, modulo a turn
+        assert sum(abs(math.remainder(t - x, 2 * math.pi)) <= 1e-12 for x in got) == 1
 
 
 # --- the sheet and the cycle ---------------------------------------------------------------------

@@ -166,6 +166,13 @@ def _kinematics(scene: Scene, pos: Mapping[str, Any], points: list[str], links: 
     return _nonzero(out, _kinematic_scales(scene, pos))
 
 
+def _law_bound(law) -> float:
+    """A bound of |M| (N·m) over a moment's law in the crank angle: its table's largest |value|,
+    |mean| + Σ|A| of its harmonics, Σ|peak| of its shapes."""
+    return max([abs(y) for _, y in law.table] + [abs(law.mean) + sum(abs(a) for a, _, _ in law.harmonics)]
+               + [sum(abs(sh.peak) for sh in law.shapes)])
+
+
 def _forces(scene: Scene, pos: Mapping[str, Any]) -> list[Asked]:
     """The reactions (zeros beside the largest |R| given) and the balancing element: M_b is an
     exact zero at most ZERO × the largest moment it is summed from — |R|·size (an arm is at most
@@ -178,7 +185,7 @@ def _forces(scene: Scene, pos: Mapping[str, Any]) -> list[Asked]:
     b = f["balance"]
     if "moment" in b:
         couples = [abs(float(i["moment"])) for i in f.get("inertia", {}).values() if "moment" in i]
-        couples += [abs(m.value) for m in scene.moments]
+        couples += [abs(m.value) if m.law is None else _law_bound(m.law) for m in scene.moments]
         scale = max([big * _size(pos), *couples])
         balance = Asked("M_{b}", "N·m", f"balancing moment on link {b['link']} (counter-clockwise +)",
                         float(b["moment"]))

@@ -223,12 +223,11 @@ def _class_iv(mech, g: ComplexGroup, known: States) -> list[dict[str, LinkState]
             raise SceneError(f"group {g.name}: its assemblies are not yet enumerated for this form (the links with "
                              "outer pairs are not opposite in the contour); leave \"assemblies\" out of draw",
                              key="plans.draw")
-        if pairs[x].kind == "P" and pairs[y].kind == "P":
-            raise SceneError(f"group {g.name} (form {g.form}): a rod slides on both its pairs; its assemblies are not "
-                             "yet enumerated for that form; leave \"assemblies\" out of draw", key="plans.draw")
         joints.append((rod, pairs[x], pairs[y]))
     slides = ox.kind == "P"
     place_x, place_y = _placer(mech, known, ox), _placer(mech, known, oy)
+    if any(px.kind == py.kind == "P" for _, px, py in joints):
+        return _locked(mech, g, known, joints, place_x, place_y)
     quarter = np.array([0.0, 0.5 * math.pi, -0.5 * math.pi])
     weight = np.array([1.0, 0.5, 0.5]) if oy.kind == "P" else np.ones(3)      # cos²(ψ/2) when y slides
 
@@ -252,6 +251,47 @@ def _class_iv(mech, g: ComplexGroup, known: States) -> list[dict[str, LinkState]
                 continue
             states = {**known, x: place_x(np.array([phi])), y: place_y(np.array([psi]))}
             out.append(_rods(mech, g, states))
+    return out
+
+
+def _locked(mech, g: ComplexGroup, known: States, joints, place_x, place_y) -> list[dict[str, LinkState]]:
+    """A class IV group whose rod slides on both x and y: a sliding pair keeps two links at one
+    angle (their local frames are the sketch's), so x and y turn together, θ_y = θ_x. Pinned
+    both, one angle t places both; one sliding, the other's angle is its guide's and t gives the
+    slide (s = size·tan(t/2), the condition × cos²(t/2)). The other rod's condition is then a
+    trigonometric polynomial of degree ≤ 2 in t: its roots are the assemblies. Both sliding, or
+    both rods sliding on both pairs, leaves a continuum (or nothing): refused, or none."""
+    (ox, oy), (x, y) = g.outer, (g.outer[0].a, g.outer[1].a)
+    others = [(rod, px, py) for rod, px, py in joints if not px.kind == py.kind == "P"]
+    if not others or (ox.kind == oy.kind == "P"):
+        zero = np.zeros(1)
+        if abs(math.remainder(float(place_x(zero).theta[0]) - float(place_y(zero).theta[0]), 2 * math.pi)) > 1e-12:
+            return []           # two guides at different angles: the rod cannot slide on both
+        raise SceneError(f"group {g.name} (form {g.form}): a rod slides on both its pairs and nothing else fixes "
+                         "how far x and y slide or turn together: its assemblies are a continuum; leave "
+                         "\"assemblies\" out of draw", key="plans.draw")
+    rod, px, py = others[0]
+
+    def states(t: np.ndarray) -> tuple[LinkState, LinkState, np.ndarray]:
+        if ox.kind == oy.kind == "R":
+            return place_x(t), place_y(t), np.ones(len(t))
+        weight = np.cos(0.5 * t) ** 2
+        if ox.kind == "P":
+            sx = place_x(t)
+            return sx, place_y(np.full(len(t), float(sx.theta[0]))), weight
+        sy = place_y(t)
+        return place_x(np.full(len(t), float(sy.theta[0]))), sy, weight
+
+    def f(t):
+        sx, sy, w = states(np.atleast_1d(np.asarray(t, dtype=float)))
+        return _rod_condition(mech, rod, px, py, x, y, sx, sy) * w
+
+    out = []
+    for t in trig_roots(f):
+        if (ox.kind == "P" or oy.kind == "P") and abs(math.cos(0.5 * t)) < 1e-9:      # s = ∞
+            continue
+        sx, sy, _ = states(np.array([t]))
+        out.append(_rods(mech, g, {**known, x: sx, y: sy}))
     return out
 
 
