@@ -389,3 +389,9 @@ def test_the_shaking_sheet_draws_the_reports_forces(tmp_path):
             assert len(tagged) == len(sizes)
             for k, size in enumerate(sizes):
                 assert tagged[f"Fsh@{k}"] == pytest.approx(size, rel=1e-12)
+            # a doctored vector (its value 2 % off what is drawn) fails plans check, naming it
+            line = next(e for e in root.iter(f"{ns}line") if e.get("data-quantity") == "Fsh@3")
+            line.set("data-value", repr(float(line.get("data-value")) * 1.02))
+            path.write_text(ET.tostring(root, encoding="unicode"), encoding="utf-8")
+            bad = inspect_svg(path)
+            assert not bad.ok and [m.quantity for m in bad.measurements if not m.ok] == ["Fsh@3"]
