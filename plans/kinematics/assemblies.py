@@ -36,11 +36,16 @@ from .trig_roots import GRID, cramer_residual, half_angle_roots, trig_roots
 from .assemblies_prismatic import sliding_poses
 from .. import linalg as la
 
-__all__ = ["Assembly", "GroupAssemblies", "assemblies", "group_assemblies", "dyad_pairs", "SAME_RTOL",
+__all__ = ["Assembly", "GroupAssemblies", "assemblies", "group_assemblies", "dyad_pairs", "SAME_RTOL", "MERGE_RTOL",
            "GRID", "residual_function"]
 
 #: Two poses are one assembly when no point of the group differs by more than this × size.
 SAME_RTOL = 1e-9
+#: ... and the enumeration lists two poses as one when they are closer than this × size: near a
+#: double root (two assemblies about to merge, a distance d apart) a pose is resolved in double
+#: precision only to ~1e-16·size²/d, so copies of one root scatter by more than SAME_RTOL once
+#: d < 1e-7·size; √(1e-16) is where that scatter and d meet: closer assemblies are one here.
+MERGE_RTOL = 1e-8
 #: An assembly's pair equations must hold to this × size after polishing (m; angles × size).
 POLISH_RTOL = 1e-12
 
@@ -96,7 +101,8 @@ def dyad_pairs(g: Group) -> tuple[Pair, ...]:
 
 def group_assemblies(motion, g: Group | ComplexGroup, i: int) -> GroupAssemblies:
     """The real assemblies of group ``g`` at position i; the one the motion has is ``chosen``
-    (matched within SAME_RTOL × size of every point)."""
+    (the nearest pose, matched within MERGE_RTOL × size of every point; poses closer than that
+    are listed once)."""
     mech = motion.mechanism
     size = mech.size
     known = _at(motion, i)
@@ -108,12 +114,13 @@ def group_assemblies(motion, g: Group | ComplexGroup, i: int) -> GroupAssemblies
     kept: list[dict[str, LinkState]] = []
     for pose in poses:
         pts = _points(mech, pose)
-        if not any(_same(pts, f, size) for f in found):
+        if not any(_gap(pts, f) <= MERGE_RTOL * size for f in found):
             found.append(pts)
             kept.append(pose)
     own = {n: known[n] for n in g.links}
     mine = _points(mech, own)
-    chosen = next((k for k, f in enumerate(found) if _same(mine, f, size)), None)
+    near = sorted((_gap(mine, f), k) for k, f in enumerate(found))
+    chosen = near[0][1] if near and near[0][0] <= MERGE_RTOL * size else None
     if chosen is None:          # not met by the enumeration (it never is, in the tests): listed as is
         found.append(mine)
         kept.append(own)
@@ -144,8 +151,9 @@ def _points(mech, pose: Mapping[str, LinkState]) -> dict[str, tuple[float, float
     return out
 
 
-def _same(a: Mapping[str, tuple[float, float]], b: Mapping[str, tuple[float, float]], size: float) -> bool:
-    return all(math.hypot(a[p][0] - b[p][0], a[p][1] - b[p][1]) <= SAME_RTOL * size for p in a)
+def _gap(a: Mapping[str, tuple[float, float]], b: Mapping[str, tuple[float, float]]) -> float:
+    """The largest distance (m) between a point of pose ``a`` and the same point of pose ``b``."""
+    return max(math.hypot(a[p][0] - b[p][0], a[p][1] - b[p][1]) for p in a)
 
 
 # --- class III and IV: the elimination ------------------------------------------------------

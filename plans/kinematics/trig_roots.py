@@ -76,11 +76,13 @@ def trig_roots(f) -> list[float]:
     degree, ≤ 5 in every elimination of plans, is far below the 32 the samples resolve), so
     |f'| ≤ L = Σ k·|c_k| (every computed k, the zero ones included). A cell [a, b] whose ends
     have one sign and |f(a)| + |f(b)| > L·(b − a) holds no root (a root t would give
-    |f(a)| ≤ L(t − a) and |f(b)| ≤ L(b − t)). The circle is cut into GRID cells; a cell with a
-    sign change gives a root by Brent's method, an excluded cell none, any other is halved, down
-    to MIN_CELL: what is left is a (near-)double root (a tangency, where two assemblies merge),
-    refined by minimising |f| over the run of such cells, and kept when |f| is rounding there
-    (the completion's polish decides, in the end)."""
+    |f(a)| ≤ L(t − a) and |f(b)| ≤ L(b − t)); likewise |f''| ≤ L₂ = Σ k²·|c_k|, so f' keeps its
+    sign over a cell where |f'(mid)| > L₂·(b − a)/2. The circle is cut into GRID cells; a cell
+    with a sign change where f' keeps its sign holds one root, found by Brent's method, an
+    excluded cell none, any other (an end's exact zero, or a sign change with three roots or an
+    end's root and one inside) is halved, down to MIN_CELL: what is left is a (near-)double
+    root (a tangency, where two assemblies merge), refined by minimising |f| over the run of
+    such cells, and kept when |f| is rounding there (the completion's polish decides, in the end)."""
     from scipy.optimize import brentq, minimize_scalar     # only when a scene asks for the assemblies
 
     n = SAMPLES
@@ -88,6 +90,10 @@ def trig_roots(f) -> list[float]:
     c = np.fft.rfft(samples) / n
     k = np.arange(len(c))
     lip = float(np.sum(2.0 * k * np.abs(c))) * (1.0 + 1e-9)
+    curv = float(np.sum(2.0 * k * k * np.abs(c))) * (1.0 + 1e-9)       # ≥ |f''|
+
+    def slope(t):           # f'(t) = −2 Σ k·Im(c_k e^{ik(t + π)})
+        return -2.0 * np.sum(np.imag(np.exp(1j * np.outer(t + math.pi, k)) * (k * c)), axis=1)
     noise = 1e-12 * float(np.max(np.abs(samples)) + 1e-300)      # f's rounding, relative to its size
     a = -math.pi + 2.0 * math.pi * np.arange(GRID) / GRID
     b = a + 2.0 * math.pi / GRID
@@ -95,13 +101,16 @@ def trig_roots(f) -> list[float]:
     roots: list[float] = [float(x) for x in a[fa == 0.0]]
     leftovers: list[tuple[float, float]] = []
     while a.size:
-        change = fa * fb < 0.0
+        last = b[0] - a[0] < MIN_CELL or a.size > 100000
+        # a sign change holds one root where f' keeps its sign: |f'(m)| > max|f''|·(b − a)/2;
+        # otherwise (three roots, or an end's root and one inside) the cell is halved like any other
+        change = (fa * fb < 0.0) & (last | (np.abs(slope(0.5 * (a + b))) > 0.5 * curv * (b - a)))
         roots += [brentq(lambda t: float(f(t)[0]), lo, hi, xtol=1e-15, rtol=1e-15) for lo, hi in zip(a[change], b[change])]
-        doubt = ~change & (np.abs(fa) + np.abs(fb) <= lip * (b - a) + noise) & (fb != 0.0)
+        doubt = ~change & (np.abs(fa) + np.abs(fb) <= lip * (b - a) + noise)
         a, b, fa, fb = a[doubt], b[doubt], fa[doubt], fb[doubt]
         if a.size == 0:
             break
-        if b[0] - a[0] < MIN_CELL or a.size > 100000:
+        if last:
             leftovers += list(zip(a, b))
             break
         m = 0.5 * (a + b)
