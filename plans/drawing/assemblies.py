@@ -19,6 +19,7 @@ from .scheme import block_corners, frame_guide
 from .sheet import FORMATS, TitleBlock, choose_format, new_sheet, note_lines
 from .style import Style
 from .svg import Heading
+from .text import runs, width as text_width
 
 __all__ = ["draw_assemblies", "SCHEME_GAP_MM"]
 
@@ -28,7 +29,21 @@ SCHEME_GAP_MM = 12.0
 LINE_MM = 5.5
 
 
-def _layout(sheet: AssemblySheet, width: float) -> list[tuple[str, object, float, float]]:
+def _caption(s: SmallScheme) -> str:
+    """The line under a small scheme: its number, "(drawn)" for the chosen one, its condition."""
+    return f"{s.number}" + (" (drawn)" if s.chosen else "") + \
+        (f", condition {s.condition:+.3f}" if s.condition is not None else "")
+
+
+def _cell(s: SmallScheme, style: Style) -> tuple[float, float]:
+    """A small scheme's cell (width, height), mm: its box with SCHEME_GAP_MM around it, at least as
+    wide as its caption (and the frame around the chosen one holds both)."""
+    caption = text_width(runs(_caption(s)), style.small_text + 0.5, False) + 4.0
+    return (max(s.box[2] - s.box[0] + SCHEME_GAP_MM, caption),
+            s.box[3] - s.box[1] + SCHEME_GAP_MM + LINE_MM * 2)
+
+
+def _layout(sheet: AssemblySheet, width: float, style: Style) -> list[tuple[str, object, float, float]]:
     """What goes where (kind, item, x, y of its top left, mm from the content's top left, y down):
     captions, schemes and texts."""
     out, y = [], 0.0
@@ -43,7 +58,7 @@ def _layout(sheet: AssemblySheet, width: float) -> list[tuple[str, object, float
         y += LINE_MM + 2.0
         x, tallest = 0.0, 0.0
         for s in row.schemes:
-            w, h = s.box[2] - s.box[0] + SCHEME_GAP_MM, s.box[3] - s.box[1] + SCHEME_GAP_MM + LINE_MM * 2
+            w, h = _cell(s, style)
             if x > 0 and x + w > width:
                 x, y, tallest = 0.0, y + tallest, 0.0
             out.append(("scheme", s, x, y))
@@ -58,10 +73,9 @@ def draw_assemblies(sheet: AssemblySheet, heading: Heading, *, ident: str, style
     """SVG text of the sheet (see the module)."""
     area = FORMATS[2].area
     width = area.x1 - area.x0 - 4.0
-    items = _layout(sheet, width)
-    right = max([x + (it.box[2] - it.box[0] + SCHEME_GAP_MM if kind == "scheme" else 0.0) for kind, it, x, _ in items]
-                + [120.0])
-    bottom = max(y + (it.box[3] - it.box[1] + SCHEME_GAP_MM + 2 * LINE_MM if kind == "scheme" else LINE_MM)
+    items = _layout(sheet, width, style)
+    right = max([x + (_cell(it, style)[0] if kind == "scheme" else 0.0) for kind, it, x, _ in items] + [120.0])
+    bottom = max(y + (_cell(it, style)[1] if kind == "scheme" else LINE_MM)
                  for kind, it, x, y in items) + 4.0 * (len(notes) + 1)
     f = choose_format(right, bottom) or FORMATS[2]
     dwg, canvas = new_sheet(f, (0.0, -bottom, right, 0.0), ident=ident, style=style,
@@ -82,8 +96,9 @@ def draw_assemblies(sheet: AssemblySheet, heading: Heading, *, ident: str, style
 def _scheme(dwg, canvas: Canvas, s: SmallScheme, at: tuple[float, float], ident: str, style: Style, *,
             mu: float) -> None:
     """One small scheme with its top left at ``at`` (x right, y down from the content's top)."""
+    w = _cell(s, style)[0]
     half = SCHEME_GAP_MM / 2
-    dx, dy = at[0] + half - s.box[0], -(at[1] + half) - s.box[3]
+    dx, dy = at[0] + 0.5 * (w - (s.box[2] - s.box[0])) - s.box[0], -(at[1] + half) - s.box[3]
 
     def p(xy) -> tuple[float, float]:
         return xy[0] + dx, xy[1] + dy
@@ -125,12 +140,10 @@ def _scheme(dwg, canvas: Canvas, s: SmallScheme, at: tuple[float, float], ident:
                             stroke_width=fmt(style.thin, 3), id=f"{ident}-h{k}-{t}")
         canvas.label(labels, q, markup(name), size=style.small_text + 0.5, prefer=(-0.7, 0.7), ident=f"{ident}-l{k}",
                      near=0.9)
-    w = s.box[2] - s.box[0] + SCHEME_GAP_MM
     base = -(at[1] + s.box[3] - s.box[1] + SCHEME_GAP_MM)
-    text = f"{s.number}" + (" (drawn)" if s.chosen else "") + \
-        (f", condition {s.condition:+.3f}" if s.condition is not None else "")
-    canvas.text(labels, canvas.paper((at[0] + half, base - 3.5)), text, size=style.small_text + 0.5,
-                ident=f"{ident}-n")
+    size = style.small_text + 0.5
+    left = at[0] + 0.5 * (w - text_width(runs(_caption(s)), size, False))
+    canvas.text(labels, canvas.paper((left, base - 3.5)), _caption(s), size=size, ident=f"{ident}-n")
     if s.chosen:
         frame = [(at[0] + 1.0, -at[1] - 1.0), (at[0] + w - 1.0, -at[1] - 1.0), (at[0] + w - 1.0, base - 5.5),
                  (at[0] + 1.0, base - 5.5)]
