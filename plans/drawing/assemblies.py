@@ -71,12 +71,14 @@ def _layout(sheet: AssemblySheet, width: float, style: Style) -> list[tuple[str,
 def draw_assemblies(sheet: AssemblySheet, heading: Heading, *, ident: str, style: Style = Style(),
                     notes: tuple[str, ...] = ()) -> str:
     """SVG text of the sheet (see the module)."""
-    area = FORMATS[2].area
-    width = area.x1 - area.x0 - 4.0
-    items = _layout(sheet, width, style)
-    right = max([x + (_cell(it, style)[0] if kind == "scheme" else 0.0) for kind, it, x, _ in items] + [120.0])
-    bottom = max(y + (_cell(it, style)[1] if kind == "scheme" else LINE_MM)
-                 for kind, it, x, y in items) + 4.0 * (len(notes) + 1)
+    for f in FORMATS:           # the smallest sheet whose width the rows wrap to and whose height holds them
+        area = f.area
+        items = _layout(sheet, area.x1 - area.x0 - 4.0, style)
+        right = max([x + (_cell(it, style)[0] if kind == "scheme" else 0.0) for kind, it, x, _ in items] + [120.0])
+        bottom = max(y + (_cell(it, style)[1] if kind == "scheme" else LINE_MM)
+                     for kind, it, x, y in items) + 4.0 * (len(notes) + 1)
+        if choose_format(right, bottom) in (f, *FORMATS[:FORMATS.index(f)]):
+            break
     f = choose_format(right, bottom) or FORMATS[2]
     dwg, canvas = new_sheet(f, (0.0, -bottom, right, 0.0), ident=ident, style=style,
                             block=TitleBlock(heading.mechanism, heading.sheet, heading.position,
@@ -96,9 +98,9 @@ def draw_assemblies(sheet: AssemblySheet, heading: Heading, *, ident: str, style
 def _scheme(dwg, canvas: Canvas, s: SmallScheme, at: tuple[float, float], ident: str, style: Style, *,
             mu: float) -> None:
     """One small scheme with its top left at ``at`` (x right, y down from the content's top)."""
-    w = _cell(s, style)[0]
+    cell = _cell(s, style)[0]
     half = SCHEME_GAP_MM / 2
-    dx, dy = at[0] + 0.5 * (w - (s.box[2] - s.box[0])) - s.box[0], -(at[1] + half) - s.box[3]
+    dx, dy = at[0] + 0.5 * (cell - (s.box[2] - s.box[0])) - s.box[0], -(at[1] + half) - s.box[3]
 
     def p(xy) -> tuple[float, float]:
         return xy[0] + dx, xy[1] + dy
@@ -142,10 +144,10 @@ def _scheme(dwg, canvas: Canvas, s: SmallScheme, at: tuple[float, float], ident:
                      near=0.9)
     base = -(at[1] + s.box[3] - s.box[1] + SCHEME_GAP_MM)
     size = style.small_text + 0.5
-    left = at[0] + 0.5 * (w - text_width(runs(_caption(s)), size, False))
+    left = at[0] + 0.5 * (cell - text_width(runs(_caption(s)), size, False))
     canvas.text(labels, canvas.paper((left, base - 3.5)), _caption(s), size=size, ident=f"{ident}-n")
     if s.chosen:
-        frame = [(at[0] + 1.0, -at[1] - 1.0), (at[0] + w - 1.0, -at[1] - 1.0), (at[0] + w - 1.0, base - 5.5),
+        frame = [(at[0] + 1.0, -at[1] - 1.0), (at[0] + cell - 1.0, -at[1] - 1.0), (at[0] + cell - 1.0, base - 5.5),
                  (at[0] + 1.0, base - 5.5)]
         canvas.polyline(g, frame, closed=True, width=style.thin, stroke=style.component_colour,
                         stroke_width=fmt(style.thin, 3), id=f"{ident}-frame")

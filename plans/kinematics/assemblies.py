@@ -128,7 +128,11 @@ def group_assemblies(motion, g: Group | ComplexGroup, i: int) -> GroupAssemblies
     out = [Assembly(pts, {n: (float(s.origin[0, 0]), float(s.origin[0, 1]), float(s.theta[0]))
                           for n, s in pose.items()}, k == chosen, _condition(mech, g, known, pose))
            for k, (pts, pose) in enumerate(zip(found, kept))]
-    out.sort(key=lambda a: tuple(c for p in sorted(a.points) for c in a.points[p]))     # order by geometry
+    # order by geometry: the points the group moves (its outer pins are the same in every pose, up
+    # to rounding, which must not decide), each coordinate to 1e-9 of the size
+    held = {p.point for p in g.outer if p.kind == "R"} if isinstance(g, ComplexGroup) \
+        else {j.point for j in (g.d, g.f) if j.kind == "R"}
+    out.sort(key=lambda a: tuple(round(c / size, 9) for p in sorted(a.points) if p not in held for c in a.points[p]))
     return GroupAssemblies(g.name, tuple(out))
 
 
