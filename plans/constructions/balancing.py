@@ -67,7 +67,8 @@ class ShaftPlanes:
 
 
 def _letters(n: int) -> list[str]:
-    return [chr(ord("a") + k) if k < 26 else chr(ord("a") + k % 26) + "′" for k in range(n)]
+    """a, b, …, z, then a′, b′, …, z′, then a″ (a′′), …: a letter for each of up to 102 vertices."""
+    return [chr(ord("a") + k % 26) + "′" * (k // 26) for k in range(n)]
 
 
 def _polygon(kind: str, unit: str, sides: list[tuple[str, complex]], closing: tuple[str, complex] | None

@@ -121,7 +121,7 @@ def make_graph(quantity: str, symbol: str, unit: str, *, top: float, x: np.ndarr
         drawn = tuple((float(px), float(origin[1] + g / mu), float(g)) for px, g in zip(x[where], gv))
         error = float(np.max(np.abs(gv - values[where])) / np.max(np.abs(values)))
     more = () if extra is None else tuple((float(px), float(origin[1] + e / mu)) for px, e in zip(x, extra))
-    ticks = tuple((tv, float(origin[1] + tv / mu)) for tv in ticks_for(lo, hi))
+    ticks = tuple((tv, float(origin[1] + tv / mu)) for tv in (ticks_for(lo, hi) if hi > lo else [0.0]))
     return Graph(quantity, symbol, unit, mu, origin, lo / mu, hi / mu, exact, at_pos, drawn, ticks, error, more,
                  extra_symbol)
 

@@ -23,6 +23,7 @@ import math
 
 from ..constructions.diagrams import Graph
 from ..constructions.dynamics import DynamicsDiagrams, Second, StartupDiagrams, Wittenbauer
+from ..errors import SceneError
 from .canvas import Canvas, fmt
 from .diagrams import LEFT_MM, RIGHT_MM, _dots, draw_graph, time_axis
 from .marks import arrow
@@ -68,6 +69,11 @@ def draw_dynamics(d: DynamicsDiagrams, heading: Heading, *, ident: str, style: S
     top = max(m.origin[1] + m.high, wy + w.high) + 10.0
     area = FORMATS[2].area
     over = top - lowest + BELOW_MM + NOTE_LINE_MM * note_rows - (area.y1 - area.y0 - TOP_SLACK_MM)
+    if over > BELOW_MM - MIN_BELOW_MM:        # taller than A3 holds: Wittenbauer's tangents run far off
+        raise SceneError(f"the dynamics sheet would be {over - BELOW_MM + MIN_BELOW_MM:.3g} mm taller than A3: "
+                         f"Wittenbauer's diagram spans {w.high - w.low:.4g} mm, its tangents tan ψ = ω_m²(1 ± δ)/2 so "
+                         "steep that ½·ω_m²·I_r dwarfs ΔT; remove \"dynamics\" from draw (the report keeps J)",
+                         key="plans.draw")
     bottom = lowest - (BELOW_MM if over <= 0.0 else max(MIN_BELOW_MM, BELOW_MM - over)) - NOTE_LINE_MM * note_rows
     box = (-LEFT_MM, bottom, wx + w.width + RIGHT_MM, top)
     dwg, canvas = new_sheet(FORMATS[2], box, ident=ident, style=style,

@@ -26,8 +26,8 @@ breaks the crossings of T − T_res are found exactly where it is linear (the li
 otherwise by certified isolation: the piece is halved until on each part either the exact range
 of T − T_res (each term's own range: a line's or monotone semicircle's ends, sin's extremes where
 they fall inside) excludes 0, or its derivative's range does (monotone: one root, by Brent's
-method, SciPy's brentq, to 1e-13° plus 4 units in the last place); parts narrower than 1e-9° are a tangency (no crossing) unless
-the sign changes. So no crossing is missed, however close two lie, but between two whose lobe stays
+method, SciPy's brentq, to 1e-13° plus 4 ulps); parts narrower than 1e-9° are a tangency (no
+crossing) unless the sign changes. So no crossing is missed, however close two lie, but between two whose lobe stays
 within :data:`NOISE` (1e-12) of the torques' size of 0 (its energy is then below 1e-12 of the size
 times its width: rounding); and E, the areas and ΔE are closed forms evaluated at those crossings,
 exact to rounding (~1e-15 relative).
@@ -41,10 +41,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import SceneError
+from ..scene.dynamics import MAX_DELTA
 from ..scene.turning import FlywheelSpec, OperationSpec, Torque, TurningSpec
 
-__all__ = ["TurningAnalysis", "Rim", "OperationAnalysis", "analyse_turning", "analyse_operation", "STEADY_RTOL",
-           "GRID_STEP_DEG"]
+__all__ = ["TurningAnalysis", "Rim", "OperationAnalysis", "analyse_turning", "analyse_operation", "STEADY_RTOL", "GRID_STEP_DEG"]
 
 RAD = math.pi / 180.0
 TWO_PI = 2.0 * math.pi
@@ -57,6 +57,11 @@ GRID_STEP_DEG = 0.5
 ISOLATE_TOL = 1e-9
 #: Values of |T − T_res| below this part of the torques' size count as 0 (rounding).
 NOISE = 1e-12
+#: The grid's chords of T − T_res stay within this part of the drawn range max(0, T, T_res) −
+#: min(0, T, T_res) per radian: the -turning sheet's areas are those chords, and plans check allows
+#: 2√2 × 0.0005 mm × μT per radian, ≥ 1.3e-5 of the range (μT ≥ range/110 mm); about half of it.
+#: Intervals are halved down to MIN_STEP_DEG (a semicircle's ends, a jump), MAX_GRID angles at most.
+CHORD_RTOL, MIN_STEP_DEG, MAX_GRID = 6e-6, 2.0 ** -26, 200_000
 
 
 @dataclass(frozen=True)
@@ -335,7 +340,9 @@ def analyse_turning(spec: TurningSpec, flywheel: FlywheelSpec | None = None) -> 
     i_max = int(np.argmax(values >= np.max(values) - tie))
     i_min = int(np.argmax(values <= np.min(values) + tie))
     fluctuation = float(values[i_max] - values[i_min])
-    theta = np.union1d(grid, crossings)
+    lo = min(0.0, float(np.min(drive.value(grid))), float(np.min(resist.value(grid))))
+    hi = max(0.0, float(np.max(drive.value(grid))), float(np.max(resist.value(grid))))
+    theta = _refined(f, np.union1d(grid, crossings), CHORD_RTOL * (hi - lo))
     mean = work / (period * RAD)
 
     delta, inertia = spec.delta, spec.inertia
@@ -345,7 +352,14 @@ def analyse_turning(spec: TurningSpec, flywheel: FlywheelSpec | None = None) -> 
                              key="turning.delta")
         inertia = fluctuation / (omega * omega * delta)
     elif inertia is not None:
-        delta = fluctuation / (inertia * omega * omega)
+        held = inertia * omega * omega           # J·ω_m² (J), compared before dividing: it may underflow
+        if not (held > 0.0 and held * MAX_DELTA >= fluctuation):
+            raise SceneError(f"a flywheel of J = {inertia:g} kg·m² at ω_m = {omega:g} rad/s lets the speed swing by "
+                             f"δ = ΔE/(J·ω_m²) beyond {MAX_DELTA:g} (ΔE = {fluctuation:.6g} J): the crank would nearly "
+                             "stop; give a larger flywheel, or delta (J is found)",
+                             key="flywheel.mass" if flywheel is not None and flywheel.mass is not None
+                             else "turning.inertia")
+        delta = fluctuation / held
     radius = flywheel.radius if flywheel is not None else None
     mass = inertia / radius ** 2 if inertia is not None and radius is not None else None
     accel = tuple((label, x, float(f.at(x)) / inertia) for label, x in spec.at) if inertia is not None else ()
@@ -378,6 +392,30 @@ def _crossings(f: _Pieces, eps: float, period: float) -> np.ndarray:
     return np.array(sorted(set(out)))
 
 
+def _refined(f: _Pieces, grid: np.ndarray, tol: float) -> np.ndarray:
+    """``grid`` (deg), intervals halved until |∫f − h·(f0 + f1)/2| ≤ ``tol``·h (N·m) on each, or it
+    is MIN_STEP_DEG wide; only the new midpoints are evaluated."""
+    y, e = f.value(grid), f.integral(grid)
+    ends = (grid[:-1], grid[1:], y[:-1], y[1:], e[:-1], e[1:])
+    added, count = [], len(grid)
+    while True:
+        a, b, ya, yb, ea, eb = ends
+        h = (b - a) * RAD
+        bad = (np.abs(eb - ea - 0.5 * h * (ya + yb)) > tol * h) & (b - a > MIN_STEP_DEG)
+        if not bad.any():
+            break
+        a, b, ya, yb, ea, eb = (v[bad] for v in ends)
+        m = 0.5 * (a + b)
+        ym, em = f.value(m), f.integral(m)
+        added.append(m)
+        count += len(m)
+        if count > MAX_GRID:
+            raise SceneError(f"the torques vary too fast to be drawn: their chords would need more than {MAX_GRID} "
+                             "angles over the cycle; fewer rows, shapes or lower harmonics", key="turning.torque")
+        ends = tuple(np.concatenate(p) for p in ((a, m), (m, b), (ya, ym), (ym, yb), (ea, em), (em, eb)))
+    return np.union1d(grid, np.concatenate(added)) if added else grid
+
+
 def _rim(flywheel: FlywheelSpec, inertia: float | None, omega: float) -> Rim | None:
     rim = flywheel.rim
     if inertia is None:
@@ -388,9 +426,16 @@ def _rim(flywheel: FlywheelSpec, inertia: float | None, omega: float) -> Rim | N
     else:
         diameter = rim.diameter
         speed = 0.5 * omega * diameter
-    mass = rim.share * inertia / (0.5 * diameter) ** 2
+    radius2 = (0.5 * diameter) ** 2
+    mass = rim.share * inertia / radius2 if radius2 > 0.0 else math.inf
     area = mass / (rim.density * math.pi * diameter)
     thickness = math.sqrt(area / rim.width_to_thickness)
+    bad = next(((k, v) for k, v in (("diameter", diameter), ("mass", mass), ("section", area),
+                                     ("thickness", thickness), ("width", rim.width_to_thickness * thickness))
+                if not (0.0 < v < math.inf)), None)
+    if bad is not None:
+        raise SceneError(f"the rim's {bad[0]} comes out {bad[1]:g}, beyond the range of a double: check its density, "
+                         "stress or diameter against the flywheel's J", key="flywheel.rim")
     return Rim(diameter=diameter, width=rim.width_to_thickness * thickness, thickness=thickness, mass=mass, area=area,
                speed=speed, stress=rim.density * speed * speed, share=rim.share)
 
@@ -443,12 +488,11 @@ def analyse_operation(spec: OperationSpec, flywheel: FlywheelSpec | None = None)
     else:
         inertia, mass = flywheel.inertia, flywheel.mass
         w1 = w * before
-        left = w1 * w1 - 2.0 * gives / inertia
-        if not left > 0.0:
+        if not 0.5 * inertia * w1 * w1 > gives:      # ½Jω1² against ΔE, not divided: J may underflow
             raise SceneError(f"the flywheel holds ½Jω1² = {0.5 * inertia * w1 * w1:.6g} J at {before:g} rpm and must "
                              f"give {gives:.6g} J: it would stop; a larger flywheel or a higher speed",
                              key="operation.rpm_before")
-        after = math.sqrt(left) / w
+        after = math.sqrt(w1 * w1 - 2.0 * gives / inertia) / w
     if mass is None and inertia is not None and radius is not None:
         mass = inertia / radius ** 2
     return OperationAnalysis(energy=spec.energy, duration=spec.duration, power=power, every=every,

@@ -155,6 +155,11 @@ def _parse(data: Mapping[str, Any], file: str | None) -> Scene:
                  gears=gears, dynamics=dynamics, assembly=assembly, counterweights=counterweights)
 
 
+#: Largest assembly number: a group has at most 10 real assemblies (a trigonometric polynomial of
+#: degree ≤ 5); beyond 100 the number is a slip, refused here rather than after the kinematics.
+MAX_ASSEMBLY = 100
+
+
 def read_assembly(table: Any) -> dict[str, int]:
     """``[plans] assembly``: group name → the number of its assembly to draw at the first analysed
     position (as the ``-assemblies`` sheet numbers them, 1 …); the names are checked once the
@@ -167,9 +172,12 @@ def read_assembly(table: Any) -> dict[str, int]:
     out = {}
     for name, k in table.items():
         n = whole(k)
-        if n is None or n < 1:
-            raise SceneError(f"the assembly of {name!r} is a whole number from 1 (its number on the -assemblies "
-                             f"sheet), got {SHOW.repr(k)}", key=f"plans.assembly.{name}")
+        if not str(name).strip():
+            raise SceneError('name the group as its -assemblies sheet does, e.g. "III(2-3-4-5)" = 2',
+                             key='plans.assembly.""')
+        if n is None or not 1 <= n <= MAX_ASSEMBLY:
+            raise SceneError(f"the assembly of {name!r} is a whole number from 1 to {MAX_ASSEMBLY} (its number on "
+                             f"the -assemblies sheet), got {SHOW.repr(k)}", key=f"plans.assembly.{name}")
         out[str(name)] = n
     return out
 

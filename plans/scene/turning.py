@@ -32,6 +32,14 @@ MAX_PERIOD = 3600.0
 MAX_TORQUE = 1e12
 #: Largest speed, rpm (and its ω in rad/s).
 MAX_RPM = 1e6
+#: Smallest mean speed ω (rad/s) and rim or flywheel speed (m/s), as a linkage drive's MIN_RATE:
+#: one turn in 200 years. Slower, ω² underflows and J = ΔE/(ω²·δ) is no longer a double.
+MIN_OMEGA, MIN_SPEED = 1e-9, 1e-9
+#: Smallest radius of gyration (m), as a sketch's MIN_SIZE_M: J = m·k² and m = J/k² stay doubles.
+MIN_RADIUS = 1e-6
+#: Most repeats of a [turning] harmonic over the cycle (k·period/360): the -turning sheet draws
+#: each of its lobes on a 250 mm axis, chords fine enough for plans check to measure its areas.
+MAX_REPEATS = 100
 #: Most rows of a torque table, harmonics, shapes, and angles in ``at``.
 MAX_ROWS = 10000
 #: A harmonic's order k must make k·period/360 a whole number within this.
@@ -149,12 +157,15 @@ def _keys(table: Any, key: str, allowed: set[str], example: str) -> Mapping[str,
     return table
 
 
-def _positive(value: Any, key: str, bound: float, unit: str) -> float:
-    """A finite number more than 0 and at most ``bound`` (in ``unit``)."""
+def _positive(value: Any, key: str, bound: float, unit: str, least: float = 0.0) -> float:
+    """A finite number more than 0 (at least ``least`` when given) and at most ``bound`` (in ``unit``)."""
     unit = unit if unit in ("", "°") else f" {unit}"
     x = number(value, key, bound=bound, why=unit)
     if not x > 0.0:
         raise SceneError(f"must be more than 0{unit}, got {x:g}", key=key)
+    if x < least:
+        raise SceneError(f"{x:g}{unit} is below the least {least:g}{unit} taken (the flywheel's J, mass and speed "
+                         "would leave the range of a double)", key=key)
     return x
 
 
@@ -217,7 +228,7 @@ def read_torque(value: Any, key: str, period: float) -> Torque:
             amp = number(r[0], at, bound=MAX_TORQUE, why=" N·m")
             order = _positive(r[1], at, 1e4, "")
             turns = order * period / 360.0
-            if abs(turns - round(turns)) > ORDER_TOL * max(1.0, turns):
+            if round(turns) < 1 or abs(turns - round(turns)) > ORDER_TOL * max(1.0, turns):
                 raise SceneError(f"A·sin(kθ + φ) with k = {order:g} does not repeat over the period {period:g}°: "
                                  "k·period/360 must be a whole number", key=at)
             terms.append((amp, order, number(r[2], at, bound=1e6, why="°")))
@@ -256,8 +267,8 @@ def _speed(table: Mapping[str, Any], name: str) -> float:
     if ("rpm" in table) == ("omega" in table):
         raise SceneError("give the mean speed: rpm (rev/min) or omega (rad/s), one of the two", key=name)
     if "rpm" in table:
-        return _positive(table["rpm"], f"{name}.rpm", MAX_RPM, "rpm") * math.pi / 30.0
-    return _positive(table["omega"], f"{name}.omega", MAX_RPM * math.pi / 30.0, "rad/s")
+        return _positive(table["rpm"], f"{name}.rpm", MAX_RPM, "rpm", MIN_OMEGA * 30.0 / math.pi) * math.pi / 30.0
+    return _positive(table["omega"], f"{name}.omega", MAX_RPM * math.pi / 30.0, "rad/s", MIN_OMEGA)
 
 
 def read_turning(table: Any, flywheel: FlywheelSpec | None) -> TurningSpec:
@@ -287,6 +298,13 @@ def read_turning(table: Any, flywheel: FlywheelSpec | None) -> TurningSpec:
     if torque.other_mean and resisting.other_mean:
         raise SceneError('torque and resisting cannot both be "mean": give one of them over the cycle',
                          key="turning.resisting")
+    for which, law in (("torque", torque), ("resisting", resisting)):
+        j = next((j for j, (_, k, _) in enumerate(law.harmonics) if k * period / 360.0 > MAX_REPEATS), None)
+        if j is not None:
+            k = law.harmonics[j][1]
+            raise SceneError(f"A·sin(kθ + φ) with k = {k:g} repeats {k * period / 360.0:g} times over the period, "
+                             f"beyond the {MAX_REPEATS} the turning-moment diagram draws",
+                             key=f"turning.{which}.harmonics[{j}]")
     if torque.constant and resisting.constant:
         raise SceneError("neither torque varies over the cycle: nothing fluctuates and no flywheel is needed; "
                          "give the torque (or the resisting torque) over the cycle", key="turning.torque")
@@ -314,7 +332,7 @@ def read_turning(table: Any, flywheel: FlywheelSpec | None) -> TurningSpec:
 def read_flywheel(table: Any) -> FlywheelSpec:
     """``[flywheel]``: radius, mass, rim."""
     t = _keys(table, "flywheel", {"radius", "mass", "rim"}, "radius = 0.6 (m, the radius of gyration)")
-    radius = _positive(t["radius"], "flywheel.radius", 1e3, "m") if "radius" in t else None
+    radius = _positive(t["radius"], "flywheel.radius", 1e3, "m", MIN_RADIUS) if "radius" in t else None
     mass = _positive(t["mass"], "flywheel.mass", MAX_INERTIA, "kg") if "mass" in t else None
     if mass is not None and radius is None:
         raise SceneError("a mass gives J = m·k² with the radius of gyration: add radius (m)", key="flywheel.mass")
@@ -379,9 +397,10 @@ def read_operation(table: Any, flywheel: FlywheelSpec | None) -> OperationSpec:
                          "([flywheel] mass and radius given: rpm_after is found), rpm with delta, or speed (m/s at "
                          f"its radius of gyration) with delta; got {', '.join(sorted(case)) or 'none'}",
                          key="operation")
-    out = {k: _positive(t[k], f"operation.{k}", MAX_RPM, "rpm") for k in ("rpm_before", "rpm_after", "rpm") if k in t}
+    out = {k: _positive(t[k], f"operation.{k}", MAX_RPM, "rpm", MIN_OMEGA * 30.0 / math.pi)
+           for k in ("rpm_before", "rpm_after", "rpm") if k in t}
     if "speed" in t:
-        out["speed"] = _positive(t["speed"], "operation.speed", MAX_SPEED, "m/s")
+        out["speed"] = _positive(t["speed"], "operation.speed", MAX_SPEED, "m/s", MIN_SPEED)
     if "delta" in t:
         out["delta"] = _delta(t["delta"], "operation.delta")
     if case == {"rpm_before"} and not known:
