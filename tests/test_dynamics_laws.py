@@ -274,6 +274,10 @@ BAD = {
     "both": (ROTOR.replace("value = -500.0", "value = -500.0\nlaw = [[0, 1], [360, 2]]"), "moments[0]", "one of the two"),
     "no dynamics": (TWO_TURNS.split("[dynamics]")[0] + '[plans]\noutput = "3"\ndraw = ["scheme"]\n', "moments[0].law",
                     "add [dynamics]"),
+    "narrow shape": (ROTOR.replace(HARMONIC, 'driving = { shapes = [{ kind = "semicircle", from = 10, '
+                                             'to = 10.0000000001, peak = 1e12 }] }'),
+                     "dynamics.driving.shapes[0]", "resolves"),
+    "loads drive": (ROTOR.replace("value = -500.0", "value = 500.0"), "dynamics.driving", "nothing takes their work"),
     "forces": (TWO_TURNS.replace('draw = ["scheme"]', 'draw = ["scheme", "forces"]'), "moments[0].law",
                "take a law over one turn"),
     "true speed": (TWO_TURNS.replace("period = 720", "period = 720\ntrue_speed = true"), "dynamics.true_speed",

@@ -137,9 +137,9 @@ def balanced(driving: Piecewise, moment: Piecewise, size: float, span: float) ->
     if abs(w_d + w_l) <= STEADY_RTOL * max(w_d, abs(w_l), size * span):
         return w_d / span
     if not w_l < 0.0:
-        raise SceneError(f"the loads take no work over the cycle (they do {w_l:.6g} J), and the driving law does "
-                         f"{w_d:.9g} J: nothing balances it; give driving = \"constant\" (the loads' mean)",
-                         key="dynamics.driving")
+        raise SceneError(f"the loads do {w_l:+.6g} J over the cycle (they drive too, or do nothing), and the driving "
+                         f"law {w_d:.9g} J: nothing takes their work (is the crank's sense of rotation the one meant?); "
+                         "give driving = \"constant\" (the loads' mean)", key="dynamics.driving")
     raise SceneError(f"the driving law does {w_d:.9g} J over the cycle and the loads take {-w_l:.9g} J: the flywheel "
                      f"would gain or lose energy every cycle; scale the law by {-w_l / w_d:.12g} to balance them (or "
                      f"give driving = \"constant\", the loads' mean)", key="dynamics.driving")

@@ -22,6 +22,9 @@ __all__ = ["read_law", "read_dynamics_with_laws", "MAX_ORDER"]
 #: Highest order k of a harmonic in a linkage's law (the quadrature's panels shrink as 1/k: at
 #: k = 100 they are 0.2°, and the linkage is solved at 8 points of each).
 MAX_ORDER = 100.0
+#: Narrowest shape of a linkage's law, degrees: the machine's panels halve towards a semicircle's
+#: ends down to 2⁻²⁶° (plans.dynamics.laws.GRADE_DEG); a shape narrower than this is not resolved.
+MIN_SHAPE_DEG = 1e-6
 
 
 def read_law(value: Any, key: str, period: float, what: str) -> Torque:
@@ -32,6 +35,11 @@ def read_law(value: Any, key: str, period: float, what: str) -> Torque:
         raise SceneError(f"a law in the crank angle is a table [[deg, N·m], …], {{ mean = T0, harmonics = [[A, k, φ°], "
                          f"…] }} or {{ shapes = [...] }} over the period {period:g}°; {what}", key=key)
     law = read_torque(value, key, period)
+    narrow = next((k for k, sh in enumerate(law.shapes) if sh.end - sh.start < MIN_SHAPE_DEG), None)
+    if narrow is not None:
+        raise SceneError(f"shape {narrow} is {law.shapes[narrow].end - law.shapes[narrow].start:g}° wide, below the "
+                         f"{MIN_SHAPE_DEG:g}° a linkage's cycle resolves (its panels); widen it or leave it out",
+                         key=f"{key}.shapes[{narrow}]")
     if law.constant:
         raise SceneError(f"this law is constant over the cycle; {what}", key=key)
     high = max((k for _, k, _ in law.harmonics), default=0.0)
