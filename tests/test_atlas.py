@@ -61,6 +61,7 @@ III = "I(0-1) ← III(2-3-4-5)"
 ATLAS = {
     "class3_six_link": Entry(III),
     "class3_forces": Entry(III),
+    "class3_assemblies": Entry(III),
     "class4_six_link": Entry("I(0-1) ← IV(2-3-4-5)"),
     "crank_slider_central": Entry(II),
     "crank_slider_forces": Entry(II),
@@ -162,7 +163,8 @@ def test_the_table_covers_every_example():
             assert "angle" in data["drive"], f"{stem}: a full turn needs a rotary drive"
         else:
             assert entry.why, f"{stem}: state why the range is limited"
-        assert data["plans"]["draw"] in (list(SHEETS), list(SHEETS) + list(FORCE_SHEETS)) or stem in OLD_GALLERY, stem
+        assert data["plans"]["draw"] in (list(SHEETS), list(SHEETS) + list(FORCE_SHEETS), list(SHEETS) + ["assemblies"]) \
+            or stem in OLD_GALLERY, stem
         assert isinstance(data.get("title"), str) and data["title"], stem
 
 
