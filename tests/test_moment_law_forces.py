@@ -67,6 +67,8 @@ def test_the_law_acts_as_its_value_at_each_position(report):
     for k in (0, 3, 4, 7, 11):
         constant = render(parse_scene(tomllib.loads(_scene(f"value = {_law_at(30.0 * k)!r}", at=f"[{k}]")))).report
         assert law[k] == pytest.approx(_balancing(constant["positions"])[k], rel=1e-12, abs=1e-12 * 100.0), k
+    for k, p in enumerate(report["positions"]):         # the JSON gives the law's value at each position
+        assert p["forces"]["moments"] == {"2": pytest.approx(_law_at(30.0 * k), rel=1e-12, abs=1e-12)}
 
 
 def test_the_balancing_moment_is_minus_the_reduced_moment(report):

@@ -106,7 +106,8 @@ def _num(x) -> float | None:
 def _forces_at(scene: Scene, forces: Forces, i: int) -> dict:
     """The force analysis at position i (N, N·m, m): ``reactions`` ("i-j" → the force of link i
     on link j), ``prismatic`` (per prismatic pair, where its reaction acts), ``inertia``,
-    ``gravity`` (when set), ``balance`` (group by group), ``power`` (the same element from the
+    ``gravity`` (when set), ``moments`` (the moments with a law in the crank angle: link → its value
+    here), ``balance`` (group by group), ``power`` (the same element from the
     power balance) and ``power_residual``; ``lever`` is left for the lever's drawing."""
     out: dict = {"reactions": {k: _xy(r.force[i]) for k, r in forces.reactions.items()}}
     prismatic = {}
@@ -128,6 +129,9 @@ def _forces_at(scene: Scene, forces: Forces, i: int) -> dict:
         out["inertia"] = {link: {"at": scene.masses[link].centre, **v} for link, v in inertia.items()}
     if scene.gravity is not None:
         out["gravity"] = {l.link: _xy(l.force[i]) for l in forces.loads if l.kind == "gravity"}
+    laws = {m.link for m in scene.moments if m.law is not None}
+    if laws:            # a moment's law in the crank angle, its value at this position (N·m, CCW +)
+        out["moments"] = {c.link: float(c.moment[i]) for c in forces.couples if c.kind == "external" and c.link in laws}
     b = forces.balance
     if b.kind == "moment":
         out["balance"] = {"link": b.link, "moment": float(b.value[i])}
