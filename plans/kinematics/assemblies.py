@@ -32,7 +32,7 @@ from .groups import candidates
 from .special import condition
 from .state import LinkState
 from .tolerances import ASSEMBLY_RTOL
-from .trig_roots import GRID, cramer_residual, half_angle_roots, trig_roots
+from .trig_roots import GRID, cramer_residual, group_roots, half_angle_roots
 from .assemblies_prismatic import sliding_poses
 from .. import linalg as la
 
@@ -208,7 +208,8 @@ def _complex(mech, g: ComplexGroup, known: dict[str, LinkState]) -> list[dict[st
         rough = sliding_poses(mech, g, known)
     else:
         e = _eliminate(mech, g, known)
-        rough = [_pose(mech, g, e, known, phi, psi) for phi in trig_roots(residual_function(e, mech.size))
+        f = residual_function(e, mech.size)
+        rough = [_pose(mech, g, e, known, phi, psi) for phi in group_roots(g, f, f"angle of link {e.x}")
                  for psi in _psi(e, phi)]
     eq = GroupEquations(mech, g.links, g.pairs)
     out = []

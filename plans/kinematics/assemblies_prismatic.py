@@ -44,7 +44,7 @@ import numpy as np
 from ..errors import SceneError
 from ..structure import ComplexGroup, Pair
 from .state import LinkState
-from .trig_roots import cramer_residual, half_angle_roots, trig_roots
+from .trig_roots import cramer_residual, group_roots, half_angle_roots
 from .. import linalg as la
 
 __all__ = ["Condition", "sliding_poses", "base_conditions", "base_residual"]
@@ -151,15 +151,7 @@ def _class_iii(mech, g: ComplexGroup, known: States) -> list[dict[str, LinkState
     if len(fixed) > 1:
         raise SceneError(f"group {g.name} (form {g.form}): two rods slide on both their pairs, so the base link can "
                          "still slide: its assemblies are a continuum; leave \"assemblies\" out of draw", key="plans.draw")
-    if fixed:
-        roots = fixed
-    else:
-        f = base_residual(conds)
-        probe = f(np.linspace(-math.pi, math.pi, 64, endpoint=False))
-        if not np.any(np.abs(probe) > 1e-13):
-            raise SceneError(f"group {g.name} (form {g.form}): its conditions hold at every angle of the base link "
-                             "(a continuum of assemblies); leave \"assemblies\" out of draw", key="plans.draw")
-        roots = trig_roots(f)
+    roots = fixed or group_roots(g, base_residual(conds), "angle of the base link")
     out = []
     for phi in roots:
         for c in _meet_all(conds, phi):
@@ -242,7 +234,7 @@ def _class_iv(mech, g: ComplexGroup, known: States) -> list[dict[str, LinkState]
         return a * w, b * w, d * w
 
     out = []
-    for phi in trig_roots(cramer_residual(coefficients, 1.0)):
+    for phi in group_roots(g, cramer_residual(coefficients, 1.0), f"{'travel' if slides else 'angle'} of link {x}"):
         if slides and abs(math.cos(0.5 * phi)) < 1e-9:      # s = ∞
             continue
         a, b, d = (v[:, 0] for v in coefficients(np.array([phi])))
@@ -287,7 +279,7 @@ def _locked(mech, g: ComplexGroup, known: States, joints, place_x, place_y) -> l
         return _rod_condition(mech, rod, px, py, x, y, sx, sy) * w
 
     out = []
-    for t in trig_roots(f):
+    for t in group_roots(g, f, f"angle of links {x} and {y}"):
         if (ox.kind == "P" or oy.kind == "P") and abs(math.cos(0.5 * t)) < 1e-9:      # s = ∞
             continue
         sx, sy, _ = states(np.array([t]))

@@ -14,7 +14,9 @@ from typing import Callable
 
 import numpy as np
 
-__all__ = ["GRID", "MIN_CELL", "trig_roots", "cramer_residual", "half_angle_roots"]
+from ..errors import SceneError
+
+__all__ = ["GRID", "MIN_CELL", "trig_roots", "group_roots", "cramer_residual", "half_angle_roots"]
 
 #: Cells of the first grid over φ ∈ [−π, π) (each cell is then refined or excluded, see :func:`trig_roots`).
 GRID = 720
@@ -135,3 +137,14 @@ def _runs(cells: list[tuple[float, float]]) -> list[tuple[float, float]]:
         else:
             out.append([lo, hi])
     return [(lo, hi) for lo, hi in out]
+
+
+def group_roots(g, f, unknown: str) -> list[float]:
+    """The roots of group ``g``'s residual f (scaled to O(1)) by :func:`trig_roots`, after refusing an f
+    that is rounding (≤ 1e-13) at 64 samples: the conditions then hold at every value of the
+    ``unknown`` (a continuum of assemblies, e.g. a parallelogram), and the search would list its noise."""
+    probe = f(np.linspace(-math.pi, math.pi, 64, endpoint=False))
+    if not np.any(np.abs(probe) > 1e-13):
+        raise SceneError(f"group {g.name} (form {g.form}): its conditions hold at every {unknown} (a continuum "
+                         "of assemblies); leave \"assemblies\" out of draw", key="plans.draw")
+    return trig_roots(f)
