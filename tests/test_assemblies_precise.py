@@ -272,14 +272,23 @@ def _agree(d: dict) -> tuple[list[int], float]:
         found = group_assemblies(motion, g, i)
         want, gap = precise_assemblies(d, set(g.links), i, size)
         assert gap["kept"] <= mp.mpf(10) ** -30 and gap["rejected"] >= mp.mpf(10) ** -6
-        assert found.count == len(want)
-        for w in want:
-            near = [a for a in found.assemblies if set(a.points) == set(w)
-                    and all(math.dist(w[p], a.points[p]) <= TOL * size for p in w)]
-            assert len(near) == 1
-            worst = max(worst, max(math.dist(w[p], near[0].points[p]) for p in w) / size)
+        worst = max(worst, matched(found, want, size))
         counts.append(found.count)
     return counts, worst
+
+
+def matched(found, want: list[dict], size: float) -> float:
+    """Plans' assemblies ``found`` against the enumeration's ``want`` (point → (x, y) each): the
+    same count, each wanted pose matched by exactly one found within TOL·size at every point; the
+    largest distance (÷ size)."""
+    assert found.count == len(want)
+    worst = 0.0
+    for w in want:
+        near = [a for a in found.assemblies if set(a.points) == set(w)
+                and all(math.dist(w[p], a.points[p]) <= TOL * size for p in w)]
+        assert len(near) == 1
+        worst = max(worst, max(math.dist(w[p], near[0].points[p]) for p in w) / size)
+    return worst
 
 
 def _toml(name: str) -> dict:

@@ -50,6 +50,7 @@ import math
 
 import mpmath as mp
 import pytest
+from test_assemblies_precise import matched
 from test_assemblies_prismatic import FORMS, LOCKED
 
 from plans.errors import SceneError
@@ -423,12 +424,7 @@ def _agree(form: str, d: dict) -> tuple[list[int], float]:
         want, gap = precise_assemblies(form, d, angle, size)
         assert gap["kept"] <= mp.mpf(10) ** -30 and gap["rejected"] >= mp.mpf(10) ** -6 and gap["other"] >= mp.mpf(10) ** -6
         assert gap["lead"] >= mp.mpf(10) ** -20 and gap["trimmed"] <= mp.mpf(10) ** -50
-        assert found.count == len(want)
-        for w in want:
-            near = [a for a in found.assemblies if set(a.points) == set(w)
-                    and all(math.dist(w[p], a.points[p]) <= TOL * size for p in w)]
-            assert len(near) == 1
-            worst = max(worst, max(math.dist(w[p], near[0].points[p]) for p in w) / size)
+        worst = max(worst, matched(found, want, size))
         counts.append(found.count)
     return counts, worst
 
