@@ -39,8 +39,9 @@ from ..gears.pair import PairAnalysis
 from .gear_cutting import cut_wheel, cutter_tooth, flank_angle
 from .gear_mates import rack_centre, rack_outline, ring_outline, ring_space_half
 from .gear_views import overview, sliding_diagram, specific_sliding
-from .pair_sheet import (CUT_TOLERANCE, ENLARGEMENTS, MESHING_MM, MODULE_MM, RIM, PairSheet, Tag, arc,
-                         outlines, scale_for, turned)
+from .pair_sheet import CUT_TOLERANCE  # noqa: F401  (re-exported: the tests bound the cut's scallops by it)
+from .pair_sheet import (ENLARGEMENTS, MESHING_MM, MODULE_MM, RIM, PairSheet, Tag, arc, cut_tolerance, outlines,
+                         scale_for, turned)
 
 __all__ = ["PairSheet", "Tag", "meshing", "cutting", "contact_turns", "specific_sliding", "ENLARGEMENTS", "MODULE_MM"]
 
@@ -50,7 +51,7 @@ def _wheel(a: PairAnalysis, i: int, spaces: int, first: int):
     blank's sector cut off a little below the root circle."""
     p = a.pair
     cut = cut_wheel(p.z[i], p.module, p.alpha, p.x[i], p.addendum, p.clearance, a.tip_radius, p.da[i],
-                    tolerance=CUT_TOLERANCE, spaces=spaces, first=first)
+                    tolerance=cut_tolerance(p.module), spaces=spaces, first=first)
     inner = max(p.df[i] / 2 - RIM * p.module, 0.0)
     return cut.difference(shapely.Point(0.0, 0.0).buffer(inner, quad_segs=360)) if inner > 0 else cut
 

@@ -13,17 +13,27 @@ from dataclasses import dataclass, field
 import numpy as np
 
 __all__ = ["PairSheet", "Tag", "ENLARGEMENTS", "REDUCTIONS", "MODULE_MM", "OVERVIEW_MM", "CUT_TOLERANCE",
-           "DETAIL_MM", "MESHING_MM", "SLIDING_MM", "SLIDING_SERIES", "RIM", "scale_for", "arc", "turned", "outlines"]
+           "cut_tolerance", "DETAIL_MM", "MESHING_MM", "SLIDING_MM", "SLIDING_SERIES", "RIM", "scale_for", "arc",
+           "turned", "outlines"]
 
 #: Enlargement scales k:1 of the detail, and reductions k0:1 (k0 < 1) of the general view.
 ENLARGEMENTS = (1.0, 2.0, 2.5, 4.0, 5.0, 10.0, 20.0, 25.0, 40.0, 50.0, 100.0)
-REDUCTIONS = (1.0, 0.5, 0.4, 0.25, 0.2, 0.1, 0.05, 0.04, 0.025, 0.02, 0.01)
+REDUCTIONS = (1.0, 0.5, 0.4, 0.25, 0.2, 0.1, 0.05, 0.04, 0.025, 0.02, 0.01, 0.005, 0.004, 0.0025, 0.002, 0.001,
+              5e-4, 4e-4, 2.5e-4, 2e-4, 1e-4)       # down to 1:10 000: wheels of 500 teeth of m = 1000 mm fit
 #: The module on paper is at least this, mm.
 MODULE_MM = 8.0
 #: The general view's largest height, mm.
 OVERVIEW_MM = 110.0
-#: The cut is within this of the exact profile, mm of the wheel (far below the paper's 0.0005 mm/k).
-CUT_TOLERANCE = 1e-4
+#: The cut is within this of the exact profile, mm of the wheel (far below the paper's 0.0005 mm/k),
+#: up to a module of ``CUT_MODULE`` mm; beyond it in proportion to the module (:func:`cut_tolerance`).
+CUT_TOLERANCE, CUT_MODULE = 1e-4, 20.0
+
+
+def cut_tolerance(module: float) -> float:
+    """The cut's tolerance (mm of the wheel) for ``module`` (mm): ``CUT_TOLERANCE``, times m/20 beyond
+    m = 20 mm — the rolling steps then stay those of m = 20 (a module of 1000 mm was cut in 65 s,
+    in 2 s now), 5 µm for m = 1000, drawn at 1:100 or smaller (0.05 µm on paper)."""
+    return CUT_TOLERANCE * max(1.0, module / CUT_MODULE)
 
 
 @dataclass(frozen=True)
@@ -76,12 +86,15 @@ SLIDING_SERIES = (1.0, 2.0, 2.5, 4.0, 5.0)
 def scale_for(m: float, size: tuple[float, float] | None = None, room: tuple[float, float] = DETAIL_MM) -> float:
     """The detail's enlargement: the largest of the series that keeps the detail (``size`` at
     1:1, mm) within :data:`DETAIL_MM`, and at least the smallest that draws the module ≥
-    :data:`MODULE_MM` long."""
+    :data:`MODULE_MM` long; where even 1:1 does not fit (a module of tens of mm and more), the
+    largest of :data:`REDUCTIONS` that does (1:100 for m = 1000 mm), else the smallest."""
     least = next((k for k in ENLARGEMENTS if m * k >= MODULE_MM - 1e-9), ENLARGEMENTS[-1])
     if size is None:
         return least
     fits = [k for k in ENLARGEMENTS if k >= least and size[0] * k <= room[0] and size[1] * k <= room[1]]
-    return max(fits) if fits else least
+    if fits or least > 1.0:
+        return max(fits) if fits else least
+    return next((k for k in REDUCTIONS if size[0] * k <= room[0] and size[1] * k <= room[1]), REDUCTIONS[-1])
 
 
 def arc(centre: np.ndarray, radius: float, a0: float, a1: float, n: int = 181) -> np.ndarray:

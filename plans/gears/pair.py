@@ -158,15 +158,18 @@ def analyse_pair(spec: GearPairSpec, gears: GearTrain | None = None, *, meshing:
         w = names[k]
         teeth = "a rack" if p.z[k] is None else f"{p.z[k]} teeth"
         if p.sa[k] <= 0.0:
-            by_addendum = p.z[k] is None or p.addenda is not None
-            fix = "give a smaller addendum" + ("" if p.z[k] is None else " or shift") if by_addendum else \
-                "give a smaller shift"
+            by_addendum = p.z[k] is None or p.addenda is not None or p.x[k] == 0.0   # no shift: the addendum's
+            fix = "give a smaller addendum" + ("" if p.z[k] is None else " or shift") if p.addenda is not None else \
+                "give a smaller addendum or pressure angle" if by_addendum else \
+                "give a smaller shift" if p.x[k] > 0.0 else "give a shift nearer 0"
             raise SceneError(f"the tip of wheel {w} ({teeth}, x = {p.x[k]:.4g}) is pointed: s_a = "
                              f"{p.sa[k]:.4g} mm ≤ 0; {fix}",
                              key="gear_pair.addendum" if by_addendum else f"gear_pair.x{k + 1}")
         if p.sa[k] < THIN_TIP * m:
             warnings.append(f"the tip of wheel {w} is thin: s_a = {p.sa[k]:.4g} mm < {THIN_TIP:g}·m = "
                             f"{THIN_TIP * m:.4g} mm")
+    if p.kind == "internal":
+        _ring_root(p, names[1])
     for text in _interference(p, names):
         if meshing:
             raise SceneError(text, key="gear_pair")
@@ -186,6 +189,21 @@ def analyse_pair(spec: GearPairSpec, gears: GearTrain | None = None, *, meshing:
     sliding = sliding_velocities(p, spec.n1) if spec.n1 is not None else None
     return PairAnalysis(pair=p, rule=rule, tip_radius=spec.tip_radius * m, names=names, warnings=tuple(warnings),
                         n1=spec.n1, sliding_velocity=sliding)
+
+
+def _ring_root(p: GearPair, name: str) -> None:
+    """Refuse a ring gear whose tooth space closes before its root circle: the space is the tooth of
+    an external wheel of its teeth and shift, e(R) = 2R(e/d + inv α − inv α_R), e = p − s2 on the
+    reference circle; e(R_f) ≤ 0 is a pinion cutter with a pointed tooth (large x2 or α)."""
+    e = p.p - p.s[1]
+    rf = p.df[1] / 2.0
+    ef = 2.0 * rf * (e / p.d[1] + inv(p.alpha) - inv(math.acos(p.db[1] / p.df[1])))
+    if ef <= 0.0:
+        key, fix = ("gear_pair.x2", "give a smaller shift x2") if p.x[1] > 0.0 else \
+            ("gear_pair.pressure_angle", "give a smaller pressure angle or clearance")
+        raise SceneError(f"the tooth space of ring gear {name} closes before its root circle (d_f = {p.df[1]:.4g} "
+                         f"mm, x2 = {p.x[1]:.4g}): its width there is {ef:.4g} mm ≤ 0, the pinion cutter's tooth "
+                         f"would be pointed; {fix}", key=key)
 
 
 def _interference(p: GearPair, names: tuple[str, str]) -> list[str]:
@@ -221,8 +239,9 @@ def _interference(p: GearPair, names: tuple[str, str]) -> list[str]:
                        "pinion more teeth")
         tip = pair_tip_interference(p)
         if tip < -1e-12:
+            why = f"θ1·z1/z2 + inv α_w − inv α_a2 − θ2 = {tip:.4g} rad < 0" if math.isfinite(tip) else \
+                f"its tip circle, d_a1 = {p.da[0]:.4g} mm, does not cross the ring's, d_a2 = {p.da[1]:.4g} mm"
             out.append(f"tip interference: the tip of wheel {names[0]} strikes the teeth of ring gear {names[1]} as it "
-                       f"leaves the mesh (θ1·z1/z2 + inv α_w − inv α_a2 − θ2 = {tip:.4g} rad < 0, "
-                       "SDP/SI Eq. 5-6); "
+                       f"leaves the mesh ({why}, SDP/SI Eq. 5-6); "
                        f"z2 − z1 = {p.z[1] - p.z[0]} is too few: give the ring more teeth")
     return out

@@ -78,7 +78,7 @@ def pair_sheets(scene: Scene, a: PairAnalysis, stem: str, style: Style) -> dict[
                  f"(wheel 1) {_text(p.sliding[0])}, at B_1 (wheel 2) {_text(p.sliding[1])}. s̄: chordal tooth "
                  "thickness on the reference (s̄) and tip (s̄_a) circles" + (" (a rack's: along its lines)."
                                                                            if p.kind == "rack" else "."))
-        scales = f"detail {s.k:g}:1 (μ = {1 / s.k:g} mm/mm); general view 1:{1 / s.k0:g} (μ = {1 / s.k0:g} mm/mm)"
+        scales = f"detail {_ratio(s.k)} (μ = {1 / s.k:g} mm/mm); general view 1:{1 / s.k0:g} (μ = {1 / s.k0:g} mm/mm)"
         sheet = {"external": "Involute gear pair in mesh", "internal": "Internal involute pair in mesh",
                  "rack": "Involute pinion and rack in mesh"}[p.kind]
         files[f"{stem}-meshing.svg"] = draw_pair_sheet(
@@ -91,7 +91,7 @@ def pair_sheets(scene: Scene, a: PairAnalysis, stem: str, style: Style) -> dict[
         notes = (f"Wheel {a.names[0]} ({p.z[0]} teeth) cut by the rack cutter shifted by x·m = {p.x[0] * p.module:.4g} mm "
                  f"from the pitch line (the cutter's tip rounded with ρ = {a.tip_radius:.4g} mm): the wheel is the blank "
                  f"less the cutter rolled over it; it is {under}.",)
-        scales = f"{s.k:g}:1 (μ = {1 / s.k:g} mm/mm)"
+        scales = f"{_ratio(s.k)} (μ = {1 / s.k:g} mm/mm)"
         files[f"{stem}-cutting.svg"] = draw_pair_sheet(
             s, Heading(scene.title, f"Generation of wheel {a.names[0]} by the rack cutter", given), ident="cutting", style=style,
             notes=notes, scales=scales)
@@ -104,3 +104,8 @@ def _text(v: float) -> str:
     if abs(v) >= UNBOUNDED:
         return "unbounded (the other tip passes through N)"
     return f"{v:.3f}"
+
+
+def _ratio(k: float) -> str:
+    """A drawing scale k as written: 2:1 enlarged, 1:100 reduced."""
+    return f"{k:g}:1" if k >= 1.0 else f"1:{1.0 / k:g}"
