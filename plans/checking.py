@@ -37,7 +37,9 @@ written (``0.5 · 10^-D``, D the most decimals of any vector coordinate). A root
 (``data-vectors``); the tagged lines found must be that many. A file whose only plan group is
 the scheme (``data-plan="scheme"``) has nothing to measure: it is reported as a scheme and is
 not a failure; nor is a plan drawn with no vector (``data-vectors="0"``: the pole alone — a
-mechanism at rest, or a construction not drawn at that position, as its subtitle says). Any
+mechanism at rest, or a construction not drawn at that position, as its subtitle says), nor a
+handout's assignment or answer sheet (``data-sheet="assignment"``, no plan group: areas left for
+the student). Any
 other file without a tagged vector — a plan whose tags were removed, or an SVG not written by
 plans — fails ("no tagged vectors: not a plan written by plans"). A centres sheet's measured
 segments ``r:X/Pj`` run from the centre Pj to the point X and are checked like vectors.
@@ -121,6 +123,9 @@ SCHEME = "scheme"
 BOUND = "bound"
 #: Kind of a plan sheet its writer drew with no vector (``data-vectors="0"``): the pole alone.
 EMPTY = "empty"
+#: Kind of a handout's assignment or answer sheet (root ``data-sheet="assignment"``): framed areas
+#: for the student's plans, nothing drawn to measure.
+ASSIGNMENT = "assignment"
 #: Largest SVG file checked, bytes (16 MB): plans' largest sheet is about 100 kB; a larger file,
 #: or one that is not a regular file, is refused before it is read (plans.scene.read_bytes).
 MAX_SVG_BYTES = 16_000_000
@@ -148,6 +153,8 @@ def inspect_svg(path: str | Path, precision: float | None = WRITER_PRECISION) ->
     if not tagged:
         if plan_groups and not claims_plan:
             return SvgReport(str(path), SCHEME, precision or WRITER_PRECISION)
+        if root.get("data-sheet") == ASSIGNMENT and not plans_:
+            return SvgReport(str(path), ASSIGNMENT, precision or WRITER_PRECISION)
         if plans_ and all(g.get("data-vectors") == "0" for g in plans_):
             return SvgReport(str(path), EMPTY, precision or WRITER_PRECISION)
         return SvgReport(str(path), "none", precision or WRITER_PRECISION,

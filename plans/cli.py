@@ -152,6 +152,8 @@ def _check(paths: Sequence[str]) -> int:
             print("  scheme sheet: no vectors to measure (not a plan)")
         elif r.kind == "empty":
             print("  plan drawn with no vector (the pole alone, as its subtitle says): nothing to measure")
+        elif r.kind == "assignment":
+            print("  assignment sheet: areas left for the student, nothing to measure")
         for m in r.measurements:
             total += 1
             bad += not m.ok

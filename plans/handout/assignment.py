@@ -280,7 +280,7 @@ def _assignment(h: Handout, d: Drawn, asked: tuple[Asked, ...]) -> tuple[str, ..
                                lengths=lengths, areas=areas)
     report = d.sheets.report
     cells, laws = loads_cells(scene, report.get("cycle", {}).get("output", {}).get("unit", "m"))
-    task = task_text(scene, asked, laws)
+    task = task_text(scene, asked, laws, at=_where(d)[1] if h.kind == "forces" else None)
     if h.kind == "forces":
         return draw_assignment(lambda mu: scheme(motion, 0, mu), scene, variant=variant, points=points,
                                links=links, lengths=lengths, extra=cells, task=task, areas=areas)

@@ -74,8 +74,9 @@ def parse_tolerance(text: str) -> float:
         raise OutputError(f"--tolerance is a percentage of the exact value, e.g. 2%, got {text!r}",
                           key="--tolerance") from None
     if not math.isfinite(value) or not MIN_TOLERANCE * 100.0 <= value < 100.0:
-        raise OutputError(f"--tolerance must lie between {MIN_TOLERANCE * 100:g} % and 100 % (Moodle keeps 14 digits "
-                          f"of an answer, so a smaller one is not met reliably), got {text!r}; e.g. 2%",
+        raise OutputError(f"--tolerance must lie between {MIN_TOLERANCE * 100:g} % and 100 %, 100 % excluded (it "
+                          f"would mark 0 right; Moodle keeps 14 digits of an answer, so one under "
+                          f"{MIN_TOLERANCE * 100:g} % is not met reliably), got {text!r}; e.g. 2%",
                           key="--tolerance")
     return value / 100.0
 

@@ -140,6 +140,7 @@ def _shaft(dwg, canvas, scene: Scene, y: float, style: Style) -> float:
         return y - 14.0
     x0 = (LEFT.x0 + LEFT.x1) / 2 - (s.ends[0] + s.ends[1]) / 2
     g = dwg.add(dwg.g(id="assignment-shaft", stroke=style.colour, fill="none"))
+    g.attribs.update({"data-plan": "scheme", "data-mu": repr(s.mu)})    # a scheme to scale: plans check measures none
     canvas.text(dwg.add(dwg.g(id="assignment-shaft-text")), (LEFT.x0, y - 12.0),
                 f"Shaft, side view (μ_l = {s.mu:g} m/mm)", size=style.text)
     canvas.line(g, _content(canvas, x0 + s.ends[0], y), _content(canvas, x0 + s.ends[1], y), width=style.link,
@@ -167,6 +168,7 @@ def _end_view(dwg, canvas, scene: Scene, top: float, bottom: float, style: Style
     canvas.text(dwg.add(dwg.g(id="assignment-end-text")), (LEFT.x0, top + 3.0),
                 f"End view: the masses' radii (μ_r = {mu:g} m/mm), θ counter-clockwise from θ = 0", size=style.text)
     g = dwg.add(dwg.g(id="assignment-end", stroke=style.colour, fill="none"))
+    g.attribs.update({"data-plan": "scheme", "data-mu": repr(mu)})
     labels = dwg.add(dwg.g(id="assignment-end-labels"))
     c = _content(canvas, cx, cy)
     reach = max(m.radius for m in r.masses) / mu + 6.0

@@ -8,11 +8,13 @@ Knows :mod:`.variants`, :mod:`.solving`, :mod:`.rotor`'s bounds, :mod:`.toml_tex
 
 from __future__ import annotations
 
+import re
 import sys
 import time
 from pathlib import Path
 from typing import Callable, Mapping, Sequence, TextIO
 
+from ..errors import OutputError
 from ..export import convert, output_names
 from ..output import check_folder, refuse_inputs, write_files
 from .asked import Asked
@@ -63,6 +65,24 @@ def _folder_names(d: Drawn, sheets: Mapping[str, str]) -> list[str]:
     """Every file name of variant ``d``'s folder: the key's sheets (SVG, PDF), its JSON, the
     assignment's ``sheets`` (SVG, PDF) and the variant's scene file (none may write over an input)."""
     return output_names({**d.sheets.files, **dict.fromkeys(sheets, ""), f"{d.name}.toml": ""}, ("svg", "pdf"))
+
+
+def _stale(out: Path, drawn: Sequence[Drawn], assignments: Sequence[Mapping[str, str]]) -> list[Path]:
+    """What an earlier handout left in ``out`` that this one would not write over: a
+    ``variant-N`` entry this one has not (fewer or more variants), or a file in one of its
+    variants' folders it does not write (another scene's sheets, other positions)."""
+    if not out.is_dir():
+        return []
+    names = {d.name: set(_folder_names(d, sheets)) for d, sheets in zip(drawn, assignments)}
+    stale = []
+    for p in sorted(out.iterdir()):
+        if not re.fullmatch(r"variant-\d+", p.name):
+            continue
+        if p.name not in names or not p.is_dir():
+            stale.append(p)
+        else:
+            stale += [q for q in sorted(p.iterdir()) if q.name not in names[p.name]]
+    return stale
 
 
 def _base_name(h: Handout) -> str:
@@ -121,6 +141,11 @@ def write_handout(h: Handout, drawn: Sequence[Drawn], out: str | Path, *,
     refuse_inputs([out / n for n in (VARIANTS, base_name, INDEX)]
                   + [out / d.name / n for d, sheets in zip(drawn, assignments) for n in _folder_names(d, sheets)],
                   inputs)
+    if stale := _stale(out, drawn, assignments):
+        raise OutputError(f"holds an earlier handout's files that this one would not replace ({len(stale)}: "
+                          f"{', '.join(str(p.relative_to(out)) for p in stale[:2])}{', …' if len(stale) > 2 else ''}): "
+                          "they would be mixed into its folders; remove them or choose an empty folder for -o",
+                          file=str(out), key="-o")
     written: list[Path] = []
     try:
         for k, d in enumerate(drawn, 1):
