@@ -47,6 +47,7 @@ import tomllib
 import mpmath as mp
 import pytest
 from test_assemblies import FOUR, SIX, _symmetric, _triad
+from test_assemblies_prismatic import _poly, _times
 
 import plans
 from plans.kinematics.assemblies import group_assemblies
@@ -59,21 +60,8 @@ REAL = mp.mpf("1e-20")      # |Im t| / max(1, |t|) of a real root
 TOL = 1e-9                  # agreement, × size (the issue's bound = plans' SAME_RTOL)
 
 
-# --- polynomials in t (coefficient lists, lowest degree first) and plane vectors, in mpmath ----
-
-def _add(*terms):
-    """Σ c·p over (c, p) in terms."""
-    n = max(len(p) for _, p in terms)
-    return [mp.fsum(c * p[k] for c, p in terms if k < len(p)) for k in range(n)]
-
-
-def _mul(p, q):
-    out = [mp.mpf(0)] * (len(p) + len(q) - 1)
-    for i, a in enumerate(p):
-        for j, b in enumerate(q):
-            out[i + j] += a * b
-    return out
-
+# --- polynomials in t (coefficient lists, lowest degree first; their sum and product are
+# test_assemblies_prismatic's _poly and _times) and plane vectors, in mpmath ------------------
 
 def _lift(f):
     """(1 + t²)·(a + b cos φ + c sin φ) for f = (a, b, c): cos φ = (1 − t²)/(1 + t²), sin φ = 2t/(1 + t²)."""
@@ -178,10 +166,10 @@ def _triad_poses(d, group, known, sk, size):
         rows.append(((-2 * dd[0], 2 * s[0], -2 * s[1]), (-2 * dd[1], 2 * s[1], 2 * s[0]),
                      (l * l - l1 * l1 - _dot(s, s) - _dot(dd, dd), 2 * _dot(dd, s), 2 * (dd[1] * s[0] - dd[0] * s[1]))))
     (mx, my, r), (nx, ny, q) = [[_lift(f) for f in row] for row in rows]
-    det = _add((1, _mul(mx, ny)), (-1, _mul(my, nx)))
-    qx = _add((1, _mul(r, ny)), (-1, _mul(q, my)))
-    qy = _add((1, _mul(mx, q)), (-1, _mul(nx, r)))
-    poly = _add((1, _mul(qx, qx)), (1, _mul(qy, qy)), (-l1 * l1, _mul(det, det)))
+    det = _poly((1, _times(mx, ny)), (-1, _times(my, nx)))
+    qx = _poly((1, _times(r, ny)), (-1, _times(q, my)))
+    qy = _poly((1, _times(mx, q)), (-1, _times(nx, r)))
+    poly = _poly((1, _times(qx, qx)), (1, _times(qy, qy)), (-l1 * l1, _times(det, det)))
     phis, gap = _angles(poly)
     poses = []
     for phi in phis:
@@ -220,10 +208,10 @@ def _class4_poses(d, group, known, sk, size):
         # E − 2P cos ψ − 2S sin ψ = 0, × (1 + u²): (E + 2P)u² − 4S u + (E − 2P) = 0 (coefficients in φ)
         forms.append((tuple(e + 2 * p for e, p in zip(E, P)), tuple(-4 * c for c in S), tuple(e - 2 * p for e, p in zip(E, P))))
     (a2, a1, a0), (b2, b1, b0) = [[_lift(f) for f in q] for q in forms]
-    xx = _add((1, _mul(a2, b0)), (-1, _mul(b2, a0)))
-    yy = _add((1, _mul(a2, b1)), (-1, _mul(b2, a1)))
-    zz = _add((1, _mul(a1, b0)), (-1, _mul(b1, a0)))
-    phis, gap = _angles(_add((1, _mul(xx, xx)), (-1, _mul(yy, zz))))
+    xx = _poly((1, _times(a2, b0)), (-1, _times(b2, a0)))
+    yy = _poly((1, _times(a2, b1)), (-1, _times(b2, a1)))
+    zz = _poly((1, _times(a1, b0)), (-1, _times(b1, a0)))
+    phis, gap = _angles(_poly((1, _times(xx, xx)), (-1, _times(yy, zz))))
     poses = []
     for phi in phis:
         (p2, p1, p0), (q2, q1, q0) = [[_at(f, mp.cos(phi), mp.sin(phi)) for f in q] for q in forms]
